@@ -1,0 +1,86 @@
+# umppmFoam -- build, tests, sanitizers, fuzzing.
+#   make            release build: build/release/umppmFoam (+ ./bin/umppmFoam link)
+#   make check      the whole test suite (-Werror build, unit + OpenFOAM
+#                   integration tests, then the unit tests under ASan/UBSan)
+#   make asan       unit tests under AddressSanitizer + UBSan (clang)
+#   make debug      -O0 -g -DUMP_DEBUG build in build/debug
+#   make fuzz       libFuzzer harness for the FoamFile reader (clang)
+#   make deps       install the Debian packages (apt-get, needs root or sudo)
+
+CC      ?= cc
+BUILD   ?= build/release
+OPT     ?= -O2 -g
+WERROR  ?=
+SAN     ?=
+CPPFLAGS = -Iinclude -I/usr/include/suitesparse -D_POSIX_C_SOURCE=200809L
+CFLAGS_ALL = -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wvla $(WERROR) $(OPT) $(SAN)
+LDLIBS  = -lumfpack -lklu -lcholmod -lamd -lcolamd -lsuitesparseconfig -lz -lm
+TEST_LDLIBS = -lcmocka
+
+DEB_PACKAGES = build-essential clang libclang-rt-14-dev libsuitesparse-dev zlib1g-dev \
+               libcmocka-dev openfoam openfoam-examples gmsh gnuplot-nox
+
+LIB_SRC  = $(filter-out src/main.c,$(wildcard src/*.c))
+LIB_OBJ  = $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o)
+LIB      = $(BUILD)/libumppm.a
+APP      = $(BUILD)/umppmFoam
+UNIT_SRC = $(wildcard tests/unit/test_*.c)
+UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
+
+.PHONY: all check unit integration asan debug fuzz deps clean
+.SECONDARY:
+
+all: $(APP)
+	@mkdir -p bin && ln -sf ../$(APP) bin/umppmFoam
+
+$(BUILD)/obj/%.o: src/%.c $(wildcard include/umppm/*.h)
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS_ALL) -c $< -o $@
+
+$(LIB): $(LIB_OBJ)
+	@mkdir -p $(dir $@)
+	ar rcs $@ $^
+
+$(APP): $(BUILD)/obj/main.o $(LIB)
+	$(CC) $(CFLAGS_ALL) -o $@ $^ $(LDLIBS)
+
+$(BUILD)/tests/%: tests/unit/%.c tests/unit/testutil.h $(LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) -Itests/unit $(CFLAGS_ALL) -o $@ $< $(LIB) $(TEST_LDLIBS) $(LDLIBS)
+
+# Unit tests of one build flavour: each binary runs from the repository root.
+unit: $(UNIT_BIN) $(APP)
+	@set -e; for t in $(UNIT_BIN); do echo "== $$t"; $$t; done
+
+# Tests against OpenFOAM's own tools (blockMesh, gmshToFoam, postProcess...).
+integration: $(APP)
+	@UMPPMFOAM=$(abspath $(APP)) tests/integration/run_all.sh
+
+check:
+	$(MAKE) BUILD=build/check WERROR=-Werror unit
+	$(MAKE) BUILD=build/check WERROR=-Werror integration
+	$(MAKE) asan
+
+asan:
+	$(MAKE) BUILD=build/asan CC=clang WERROR=-Werror OPT="-O1 -g -fno-omit-frame-pointer" \
+	    SAN="-fsanitize=address,undefined -fno-sanitize-recover=all" unit
+
+debug:
+	$(MAKE) BUILD=build/debug OPT="-O0 -g -DUMP_DEBUG" all
+
+fuzz: $(BUILD)/fuzz_foam
+$(BUILD)/fuzz_foam: tests/fuzz/fuzz_foam.c $(LIB_SRC)
+	@mkdir -p $(dir $@)
+	clang $(CPPFLAGS) -std=c11 -g -O1 -fsanitize=fuzzer,address,undefined -o $@ $^ $(LDLIBS)
+
+deps:
+	@missing=""; for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
+	  echo "Installing:$$missing"; \
+	  $$SUDO apt-get update && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y $$missing; \
+	else echo "All Debian packages present."; fi
+
+clean:
+	rm -rf build bin

@@ -1,0 +1,76 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * case.h -- an OpenFOAM case directory and its settings (module prefix case_).
+ *
+ * Reads system/controlDict, constant/transportProperties and
+ * system/fvSolution into plain structs (defaults as OpenFOAM's), and finds
+ * time directories. Numerics never read files: they get these structs.
+ */
+#ifndef UMPPM_CASE_H
+#define UMPPM_CASE_H
+
+#include "umppm/ump.h"
+
+typedef enum { CASE_START_STARTTIME, CASE_START_LATESTTIME, CASE_START_FIRSTTIME } case_start_from;
+typedef enum { CASE_STOP_ENDTIME, CASE_STOP_WRITENOW, CASE_STOP_NOWRITENOW, CASE_STOP_NEXTWRITE } case_stop_at;
+typedef enum {
+    CASE_WRITE_TIMESTEP, CASE_WRITE_RUNTIME, CASE_WRITE_ADJUSTABLERUNTIME,
+    CASE_WRITE_CPUTIME, CASE_WRITE_CLOCKTIME
+} case_write_control;
+
+typedef struct case_control {
+    char application[128];
+    case_start_from start_from;
+    double start_time;           /* startTime */
+    case_stop_at stop_at;
+    double end_time;
+    double delta_t;
+    case_write_control write_control;
+    double write_interval;
+    int purge_write;             /* keep only the last N time directories; 0 = all */
+    int write_binary;            /* writeFormat */
+    int write_precision;         /* default 6 */
+    int write_compression;       /* on/off (yes/no, compressed/uncompressed) */
+    int time_format_fixed;       /* timeFormat: 0 general, 1 fixed, 2 scientific */
+    int time_precision;          /* default 6 */
+    int adjust_time_step;        /* adjustTimeStep */
+    double max_co;               /* maxCo, default 1 */
+    double max_delta_t;          /* maxDeltaT, default "great" */
+    int run_time_modifiable;
+} case_control;
+
+typedef struct case_transport {
+    double nu;                   /* kinematic viscosity [m^2/s] */
+    int has_nu;
+} case_transport;
+
+typedef struct case_solution {
+    long p_ref_cell;             /* PISO/PIMPLE/SIMPLE pRefCell, default 0 */
+    double p_ref_value;          /* pRefValue, default 0 */
+    int has_p_ref_point;
+    double p_ref_point[3];       /* pRefPoint, if given instead of pRefCell */
+} case_solution;
+
+/* Read <case>/system/controlDict. Missing required keys (deltaT, endTime,
+ * startTime unless latestTime/firstTime, writeInterval) are errors naming
+ * file and line; unknown enumeration words are errors listing the valid ones. */
+ump_status case_read_control(const char *case_dir, case_control *c, ump_err *err);
+/* Read <case>/constant/transportProperties (nu with or without dimensions). */
+ump_status case_read_transport(const char *case_dir, case_transport *t, ump_err *err);
+/* Read <case>/system/fvSolution: pRefCell/pRefValue/pRefPoint from the PISO,
+ * PIMPLE or SIMPLE sub-dictionary (first present). Missing file is an error. */
+ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *err);
+
+/* Time directories of a case: names whose text reads fully as a number
+ * (plus "0"), sorted by value. *names is an array of *n malloc'd strings;
+ * free with case_free_times. */
+ump_status case_list_times(const char *case_dir, char ***names, double **values,
+                           int *n, ump_err *err);
+void case_free_times(char **names, double *values, int n);
+
+/* The start time directory per controlDict startFrom (startTime: the
+ * directory whose value equals startTime within 1e-12 relative, error if
+ * none; latestTime; firstTime). */
+ump_status case_start_dir(const char *case_dir, const case_control *c,
+                          char *name, size_t len, double *value, ump_err *err);
+
+#endif

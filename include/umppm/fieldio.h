@@ -1,0 +1,79 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * fieldio.h -- reading and writing OpenFOAM field files and time
+ * directories (module prefix fio_).
+ *
+ * Reading: <file> (or <file>.gz), ascii or binary, class volScalarField or
+ * volVectorField; internalField uniform or nonuniform; boundaryField entries
+ * matched to each mesh patch by exact patch name, then by patch group
+ * (inGroups, and the patch type for constraint types), then by regex key
+ * (latest first), as OpenFOAM's GeometricBoundaryField does. A patch with no
+ * entry, an unsupported type, a value of the wrong size, or a constraint
+ * patch (empty, cyclic, symmetryPlane) given an incompatible type is an
+ * error naming the file and line.
+ *
+ * Writing: exactly OpenFOAM's layout (banner, FoamFile header with
+ * location, dimensions, internalField, boundaryField), ascii or binary
+ * (arch "LSB;label=32;scalar=64"), writePrecision significant digits,
+ * optional gzip (ascii only, as v1912: binary + compression writes plain).
+ * Files are written inside a time directory opened with fio_timedir_begin():
+ * everything goes to a hidden temporary directory that fio_timedir_commit()
+ * renames into place, so a failed run never leaves a partial time directory
+ * and never destroys the previous one.
+ */
+#ifndef UMPPM_FIELDIO_H
+#define UMPPM_FIELDIO_H
+
+#include <stdio.h>
+#include "umppm/ump.h"
+#include "umppm/polymesh.h"
+#include "umppm/field.h"
+
+typedef struct fio_format {
+    int binary;       /* writeFormat binary */
+    int precision;    /* writePrecision (significant digits), default 6 */
+    int compress;     /* writeCompression on (ignored for binary, as v1912) */
+} fio_format;
+
+/* Read a field file. ncomp: 1 or 3 (checked against the class). The name of
+ * the field is the header object. */
+ump_status fio_read_field(const char *path, const pmesh *pm, int ncomp,
+                          fld_field **out, ump_err *err);
+
+/* Write field f as <dir>/<f->name> (.gz when compressing). location is the
+ * header's location entry (the time name, e.g. "0.1"). */
+ump_status fio_write_field(const char *dir, const char *location,
+                           const fld_field *f, const fio_format *fmt, ump_err *err);
+
+/* <dir>/uniform/time, always ascii and plain, as OpenFOAM writes it. */
+ump_status fio_write_uniform_time(const char *dir, const char *location,
+                                  double value, const char *name, long index,
+                                  double deltaT, double deltaT0, ump_err *err);
+
+/* A time directory being written. */
+typedef struct fio_timedir {
+    char final_dir[4096];  /* <case>/<name> */
+    char tmp_dir[4096];    /* <case>/.<name>.tmp.<pid>: write files here */
+    char name[64];
+    int open;
+} fio_timedir;
+
+/* Create the temporary directory for time name in case_dir. */
+ump_status fio_timedir_begin(const char *case_dir, const char *name,
+                             fio_timedir *td, ump_err *err);
+/* Move it into place (an existing <case>/<name> is replaced only after the
+ * new one is complete). */
+ump_status fio_timedir_commit(fio_timedir *td, ump_err *err);
+/* Remove the temporary directory (after a failure). Safe to call twice. */
+void fio_timedir_abort(fio_timedir *td);
+
+/* Create directories along path (mkdir -p). */
+ump_status fio_mkdir_p(const char *path, ump_err *err);
+
+/* Standard OpenFOAM-style file banner + FoamFile header; writes to fp.
+ * location may be NULL. binary selects "format binary" and the arch entry. */
+void fio_write_header(FILE *fp, const char *cls, const char *location,
+                      const char *object, int binary);
+/* Trailing divider line. */
+void fio_write_footer(FILE *fp);
+
+#endif

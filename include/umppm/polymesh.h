@@ -1,0 +1,65 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * polymesh.h -- OpenFOAM constant/polyMesh reader (module prefix pmesh_).
+ *
+ * Reads points, faces (faceList or faceCompactList), owner, neighbour and
+ * boundary, ascii or binary, plain or gzipped, into the 3-D polyMesh it
+ * describes. No geometry is computed here; pmesh_check() verifies the
+ * topology (counts, index ranges, owner < neighbour on internal faces,
+ * patch ranges contiguous and covering the boundary, every cell closed).
+ */
+#ifndef UMPPM_POLYMESH_H
+#define UMPPM_POLYMESH_H
+
+#include "umppm/ump.h"
+
+typedef enum pmesh_patch_kind {
+    PMESH_PATCH,          /* generic "patch" (inlets, outlets...) */
+    PMESH_WALL,
+    PMESH_EMPTY,
+    PMESH_SYMMETRYPLANE,
+    PMESH_SYMMETRY,
+    PMESH_CYCLIC,
+    PMESH_WEDGE,
+    PMESH_OTHER           /* any other type word (processor, cyclicAMI...) */
+} pmesh_patch_kind;
+
+typedef struct pmesh_patch {
+    char *name;
+    char *type;              /* type word as written */
+    pmesh_patch_kind kind;
+    char **groups;           /* inGroups, ngroups entries */
+    int ngroups;
+    ump_idx start;           /* startFace */
+    ump_idx n;               /* nFaces */
+    /* cyclic only */
+    char *neighbour_patch;   /* neighbourPatch, NULL if not cyclic */
+    int nbr;                 /* index of neighbour patch (-1 if none) */
+    char *transform;         /* "unknown", "translational", "rotational", "none"... or NULL */
+    int has_separation;
+    double separation[3];    /* separationVector (from this patch to its neighbour) */
+} pmesh_patch;
+
+typedef struct pmesh {
+    char *dir;               /* the polyMesh directory read */
+    ump_idx npoints, nfaces, ninternal, ncells;
+    double *points;          /* [3*npoints] */
+    ump_idx *face_off;       /* [nfaces+1] CSR offsets into face_pts */
+    ump_idx *face_pts;       /* [face_off[nfaces]] point labels */
+    ump_idx *owner;          /* [nfaces] */
+    ump_idx *neighbour;      /* [ninternal] */
+    pmesh_patch *patch;      /* [npatches] */
+    int npatches;
+} pmesh;
+
+/* Read <dir>/points, faces, owner, neighbour, boundary and run pmesh_check. */
+ump_status pmesh_read(const char *dir, pmesh **out, ump_err *err);
+/* Topology checks (see top of file); messages name dir. */
+ump_status pmesh_check(const pmesh *m, ump_err *err);
+/* Index of patch by name, -1 when absent. */
+int pmesh_patch_index(const pmesh *m, const char *name);
+/* 1 if patch p lists group g in inGroups (or its type equals g, as
+ * OpenFOAM's constraint types are implicit groups). */
+int pmesh_patch_in_group(const pmesh_patch *p, const char *g);
+void pmesh_free(pmesh **m);
+
+#endif

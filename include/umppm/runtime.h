@@ -1,0 +1,39 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * runtime.h -- OpenFOAM's Time logic without any I/O (module prefix rt_):
+ * advancing time, deciding write times (writeControl timeStep, runTime,
+ * adjustableRunTime), adjusting deltaT to hit write times and to honour
+ * maxCo, and naming time directories (%.*g with timePrecision, raised when
+ * a name would not distinguish consecutive times, as Time::operator++).
+ */
+#ifndef UMPPM_RUNTIME_H
+#define UMPPM_RUNTIME_H
+
+#include <stddef.h>
+#include "umppm/case.h"
+
+typedef struct rt_time {
+    case_control ctl;      /* copy of the settings */
+    double value;          /* current time */
+    double delta_t, delta_t0;
+    long index;            /* time step index (0 at start) */
+    long write_index;      /* writeTimeIndex_ */
+    int precision;         /* current timePrecision (may grow) */
+    int write_time;        /* 1 when the current step must be written */
+    int precision_raised;  /* set when the last ++ raised precision (for a warning) */
+    char name[64];         /* time name of value */
+} rt_time;
+
+/* Start at value t0 (its directory name tname is kept as the name). */
+void rt_init(rt_time *t, const case_control *c, double t0, const char *tname);
+/* Time name of value at the given precision (timeFormat general: %.*g). */
+void rt_name(double value, int precision, int format, char *buf, size_t len);
+/* 1 while value < endTime - 0.5*deltaT (OpenFOAM Time::run()). */
+int rt_running(const rt_time *t);
+/* Advance by delta_t: index++, name (raising precision if needed), write_time. */
+void rt_advance(rt_time *t);
+/* Before rt_advance: with adjustTimeStep, set delta_t from the max Courant
+ * number of the last step as OpenFOAM's setDeltaT.H (factor <= 1.2, at most
+ * maxDeltaT), then shorten it to land on adjustableRunTime write times. */
+void rt_adjust_delta_t(rt_time *t, double courant_max);
+
+#endif
