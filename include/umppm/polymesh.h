@@ -62,4 +62,21 @@ int pmesh_patch_index(const pmesh *m, const char *name);
 int pmesh_patch_in_group(const pmesh_patch *p, const char *g);
 void pmesh_free(pmesh **m);
 
+/* Build a one-cell-thick polyMesh in memory by extruding 2-D polygons along
+ * z from 0 to thickness (tests and mesh-making tools).
+ *   xy [2*nv]            vertex coordinates
+ *   poly_off [npoly+1], poly_v [poly_off[npoly]]  polygons, any orientation
+ *   patch_of(x, y, ctx)  patch index (0..npatch-1) of the boundary edge whose
+ *                        midpoint is (x, y)
+ *   names/types [npatch] patch names and types; a last patch
+ *                        "frontAndBack" of type empty is appended.
+ * Internal faces are in upper-triangular order (by owner, then neighbour);
+ * boundary faces of a patch are sorted by midpoint (x, then y), so faces k of
+ * two opposite straight patches face each other (usable as cyclic pairs). */
+ump_status pmesh_extrude(const double *xy, ump_idx nv, const ump_idx *poly_off,
+                         const ump_idx *poly_v, ump_idx npoly, double thickness,
+                         int (*patch_of)(double x, double y, void *ctx), void *ctx,
+                         const char *const *names, const char *const *types, int npatch,
+                         pmesh **out, ump_err *err);
+
 #endif

@@ -76,6 +76,8 @@ void ump_alloc_fail_after(long n);
  * (approximate: frees are not tracked; use getrusage for RSS). */
 size_t ump_alloc_requested(void);
 
+#define UMP_PI 3.14159265358979323846
+
 #define UMP_MIN(a, b) ((a) < (b) ? (a) : (b))
 #define UMP_MAX(a, b) ((a) > (b) ? (a) : (b))
 
