@@ -12,7 +12,7 @@ BUILD   ?= build/release
 OPT     ?= -O2 -g
 WERROR  ?=
 SAN     ?=
-CPPFLAGS = -Iinclude -I/usr/include/suitesparse -D_POSIX_C_SOURCE=200809L
+CPPFLAGS = -Iinclude -I/usr/include/suitesparse -D_XOPEN_SOURCE=700
 CFLAGS_ALL = -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wvla $(WERROR) $(OPT) $(SAN)
 LDLIBS  = -lumfpack -lklu -lcholmod -lamd -lcolamd -lsuitesparseconfig -lz -lm
 TEST_LDLIBS = -lcmocka
