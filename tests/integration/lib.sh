@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # lib.sh -- shell helpers for the OpenFOAM integration tests (bash).
 #
@@ -78,7 +79,7 @@ mesh_from_geo() {
     run_in "$dir" gmshToFoam gmshToFoam "$base.msh" || return 1
     while read -r patch type; do
         [ -n "$patch" ] || continue
-        if ! grep -Eq "^[[:space:]]*$patch[[:space:]]*\$" "$dir/constant/polyMesh/boundary"; then
+        if ! grep -Eq "^[[:space:]]*${patch}[[:space:]]*\$" "$dir/constant/polyMesh/boundary"; then
             lib_err "$geo names patch '$patch' but gmshToFoam wrote no such patch"
             return 1
         fi
@@ -104,7 +105,10 @@ make_case() {
         lib_err "make_case: $dest exists and is not empty"
         return 1
     fi
-    mkdir -p "$dest" && cp -R "$src/." "$dest/" || { lib_err "cannot copy $src to $dest"; return 1; }
+    if ! { mkdir -p "$dest" && cp -R "$src/." "$dest/"; }; then
+        lib_err "cannot copy $src to $dest"
+        return 1
+    fi
     if [ -f "$dest/system/blockMeshDict" ]; then
         run_in "$dest" blockMesh blockMesh || return 1
     else

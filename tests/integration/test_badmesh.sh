@@ -12,6 +12,7 @@
 # Environment:
 #   UMPPMFOAM   path of the umppmFoam binary (required)
 #   KEEP=1      keep the work directory (it is also kept when a case fails)
+#   BADMESH_TIMEOUT  seconds allowed per umppmFoam run (default 60)
 # Prints one PASS/FAIL line per case; exits non-zero if any case fails.
 set -eu -o pipefail
 
@@ -35,7 +36,8 @@ if ! { make_case cavity "$good" && cp -R "$good" "$goodbin" && to_binary "$goodb
     echo "test_badmesh.sh: FAIL: could not build the cavity mesh (work dir $work)" >&2
     exit 1
 fi
-pm=constant/polyMesh
+pm=constant/polyMesh   # used by the corruption snippets (eval)
+export pm
 
 # --- corruption helpers (ASCII polyMesh files as blockMesh writes them) ------
 
@@ -90,7 +92,7 @@ n=0
 run_umppm() {
     local d=$1
     rc=0
-    timeout 60 "$UMPPMFOAM" -case "$d" -checkMesh >"$d/log.umppm.out" 2>"$d/log.umppm.err" || rc=$?
+    timeout "${BADMESH_TIMEOUT:-60}" "$UMPPMFOAM" -case "$d" -checkMesh >"$d/log.umppm.out" 2>"$d/log.umppm.err" || rc=$?
 }
 
 crash_text() {
@@ -125,7 +127,7 @@ while IFS='|' read -r label file base corrupt; do
     if [ "$rc" -eq 0 ]; then
         why="exit status 0 (broken mesh accepted)"
     elif [ "$rc" -eq 124 ]; then
-        why="timed out after 60 s"
+        why="timed out after ${BADMESH_TIMEOUT:-60} s"
     elif [ "$rc" -ge 128 ]; then
         why="killed by a signal (exit $rc)"
     fi

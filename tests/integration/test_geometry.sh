@@ -85,4 +85,8 @@ if [ "$nfail" -ne 0 ]; then
     echo "test_geometry.sh: work directory kept: $work"
     exit 1
 fi
-[ "${KEEP:-0}" = 1 ] && echo "test_geometry.sh: work directory kept: $work" || rm -rf "$work"
+if [ "${KEEP:-0}" = 1 ]; then
+    echo "test_geometry.sh: work directory kept: $work"
+else
+    rm -rf "$work"
+fi
