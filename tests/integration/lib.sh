@@ -1,0 +1,188 @@
+# shellcheck shell=bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# lib.sh -- shell helpers for the OpenFOAM integration tests (bash).
+#
+# Source it:   . "$(dirname "$0")/lib.sh"
+#
+#   of_env                     export WM_PROJECT_DIR, check the OpenFOAM and
+#                              gmsh binaries are on PATH
+#   make_case NAME DEST        copy tests/cases/NAME to DEST and build its mesh
+#                              (blockMesh, or gmsh + gmshToFoam + patch types);
+#                              checkMesh must say "Mesh OK"; logs in DEST/log.*
+#   to_binary CASE             rewrite constant/polyMesh in binary
+#                              (foamFormatConvert, writeFormat binary)
+#   gzip_mesh CASE             gzip points, faces, owner, neighbour in place
+#   write_geometry CASE        write 0/C and 0/V (cell centres and volumes) in
+#                              ascii with writePrecision 17
+#   checkmesh_cell_types CASE  one line "hexahedra:N prisms:M ..." from
+#                              CASE/log.checkMesh (non-zero counts only)
+#
+# Every function returns non-zero after printing "lib.sh: ..." to stderr when
+# something fails (they do not rely on set -e, which bash ignores inside
+# functions called from 'if' or '||'). Commands' output goes to CASE/log.<cmd>;
+# on failure the tail of that log is printed.
+
+# Directory of this file, and of the case templates.
+UMPPM_INTEGRATION_DIR=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+UMPPM_CASES_DIR=$(cd "$UMPPM_INTEGRATION_DIR/../cases" && pwd)
+
+lib_err() {
+    printf 'lib.sh: error: %s\n' "$*" >&2
+}
+
+# of_env: OpenFOAM environment. WM_PROJECT_DIR defaults to the Debian location.
+of_env() {
+    export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
+    if [ ! -d "$WM_PROJECT_DIR" ]; then
+        lib_err "WM_PROJECT_DIR=$WM_PROJECT_DIR is not a directory (OpenFOAM v1912 not installed?)"
+        return 1
+    fi
+    local b missing=""
+    for b in blockMesh gmshToFoam checkMesh postProcess foamFormatConvert foamDictionary gmsh gzip; do
+        command -v "$b" >/dev/null 2>&1 || missing="$missing $b"
+    done
+    if [ -n "$missing" ]; then
+        lib_err "missing on PATH:$missing (install the Debian packages 'openfoam' and 'gmsh': make deps)"
+        return 1
+    fi
+}
+
+# run_in CASE LOGNAME CMD...: run CMD inside CASE, output to CASE/log.LOGNAME.
+# Fails if CMD fails or the log contains "FOAM FATAL".
+run_in() {
+    local dir=$1 log=$2
+    shift 2
+    if ! (cd "$dir" && "$@") >"$dir/log.$log" 2>&1; then
+        lib_err "'$*' failed in $dir (log: $dir/log.$log):"
+        tail -n 20 "$dir/log.$log" | sed 's/^/    /' >&2
+        return 1
+    fi
+    if grep -q 'FOAM FATAL' "$dir/log.$log"; then
+        lib_err "'$*' reported FOAM FATAL in $dir (log: $dir/log.$log):"
+        grep -A 8 'FOAM FATAL' "$dir/log.$log" | sed 's/^/    /' >&2
+        return 1
+    fi
+}
+
+# foam_set CASE FILE ENTRY VALUE: foamDictionary -entry ENTRY -set VALUE.
+foam_set() {
+    local dir=$1 file=$2 entry=$3 value=$4
+    run_in "$dir" foamDictionary foamDictionary "$file" -entry "$entry" -set "$value"
+}
+
+# mesh_from_geo CASE GEO: gmsh -> msh2 -> gmshToFoam, then the patch types
+# listed in GEO as comment lines "// foam-patch-type: <patch> <type>".
+mesh_from_geo() {
+    local dir=$1 geo=$2 base patch type
+    base=$(basename "$geo" .geo)
+    run_in "$dir" gmsh gmsh -3 -format msh2 "$base.geo" -o "$base.msh" || return 1
+    run_in "$dir" gmshToFoam gmshToFoam "$base.msh" || return 1
+    while read -r patch type; do
+        [ -n "$patch" ] || continue
+        if ! grep -Eq "^[[:space:]]*${patch}[[:space:]]*\$" "$dir/constant/polyMesh/boundary"; then
+            lib_err "$geo names patch '$patch' but gmshToFoam wrote no such patch"
+            return 1
+        fi
+        foam_set "$dir" constant/polyMesh/boundary "entry0/$patch/type" "$type" || return 1
+    done <<EOF
+$(sed -n 's|^[[:space:]]*//[[:space:]]*foam-patch-type:[[:space:]]*||p' "$geo")
+EOF
+}
+
+# make_case NAME DEST: DEST must not exist or be an empty directory.
+make_case() {
+    local name=${1:-} dest=${2:-} src geo
+    if [ -z "$name" ] || [ -z "$dest" ]; then
+        lib_err "usage: make_case NAME DESTDIR"
+        return 1
+    fi
+    src=$UMPPM_CASES_DIR/$name
+    if [ ! -d "$src" ]; then
+        lib_err "no case template '$name' in $UMPPM_CASES_DIR"
+        return 1
+    fi
+    if [ -e "$dest" ] && [ -n "$(ls -A "$dest")" ]; then
+        lib_err "make_case: $dest exists and is not empty"
+        return 1
+    fi
+    if ! { mkdir -p "$dest" && cp -R "$src/." "$dest/"; }; then
+        lib_err "cannot copy $src to $dest"
+        return 1
+    fi
+    if [ -f "$dest/system/blockMeshDict" ]; then
+        run_in "$dest" blockMesh blockMesh || return 1
+    else
+        set -- "$dest"/*.geo
+        if [ $# -ne 1 ] || [ ! -f "$1" ]; then
+            lib_err "case $name has neither system/blockMeshDict nor exactly one .geo file"
+            return 1
+        fi
+        mesh_from_geo "$dest" "$1" || return 1
+    fi
+    run_in "$dest" checkMesh checkMesh || return 1
+    if ! grep -q '^Mesh OK' "$dest/log.checkMesh"; then
+        lib_err "checkMesh did not report 'Mesh OK' for $name (log: $dest/log.checkMesh):"
+        grep -E '\*\*\*|Failed' "$dest/log.checkMesh" | sed 's/^/    /' >&2
+        return 1
+    fi
+}
+
+# checkmesh_cell_types CASE: e.g. "hexahedra:160 prisms:664".
+checkmesh_cell_types() {
+    sed -n '/Overall number of cells of each type/,/polyhedra/p' "$1/log.checkMesh" |
+        awk 'NF == 2 && $2 + 0 > 0 { printf "%s%s%s", sep, $1, $2; sep = " " } END { print "" }'
+}
+
+# polymesh_format FILE: the 'format' word in a FoamFile header (plain or .gz).
+polymesh_format() {
+    local f=$1
+    if [ -f "$f.gz" ] && [ ! -f "$f" ]; then
+        gzip -dc "$f.gz"
+    else
+        cat "$f"
+    fi 2>/dev/null | head -c 2000 | tr -d '\0' |
+        sed -n 's/^[[:space:]]*format[[:space:]]*\([a-z]*\);.*/\1/p' | head -n 1 || true
+}
+
+# to_binary CASE
+to_binary() {
+    local dir=${1:?usage: to_binary CASEDIR} f fmt
+    foam_set "$dir" system/controlDict writeFormat binary || return 1
+    run_in "$dir" foamFormatConvert foamFormatConvert -constant -noZero || return 1
+    for f in points faces owner neighbour; do
+        fmt=$(polymesh_format "$dir/constant/polyMesh/$f")
+        if [ "$fmt" != binary ]; then
+            lib_err "to_binary: constant/polyMesh/$f has format '$fmt', expected binary"
+            return 1
+        fi
+    done
+}
+
+# gzip_mesh CASE
+gzip_mesh() {
+    local dir=${1:?usage: gzip_mesh CASEDIR} f
+    for f in points faces owner neighbour; do
+        if [ ! -f "$dir/constant/polyMesh/$f" ]; then
+            lib_err "gzip_mesh: no constant/polyMesh/$f in $dir"
+            return 1
+        fi
+        gzip -f "$dir/constant/polyMesh/$f" || { lib_err "gzip_mesh: gzip $f failed"; return 1; }
+    done
+}
+
+# write_geometry CASE: 0/C (+Cx, Cy, Cz) and 0/V, ascii, 17 digits.
+# writeFormat is set to ascii so the reference values are text even when the
+# mesh itself was converted to binary.
+write_geometry() {
+    local dir=${1:?usage: write_geometry CASEDIR} f
+    foam_set "$dir" system/controlDict writePrecision 17 || return 1
+    foam_set "$dir" system/controlDict writeFormat ascii || return 1
+    run_in "$dir" postProcess.writeCellCentres postProcess -func writeCellCentres -time 0 || return 1
+    run_in "$dir" postProcess.writeCellVolumes postProcess -func writeCellVolumes -time 0 || return 1
+    for f in C V; do
+        if [ ! -f "$dir/0/$f" ]; then
+            lib_err "write_geometry: postProcess did not write 0/$f in $dir"
+            return 1
+        fi
+    done
+}
