@@ -1,5 +1,6 @@
 # umppmFoam -- build, tests, sanitizers, fuzzing.
 #   make            release build: build/release/umppmFoam (+ ./bin/umppmFoam link)
+#   make run        install Debian packages if missing, build, run tutorials/cavity
 #   make check      the whole test suite (-Werror build, unit + OpenFOAM
 #                   integration tests, then the unit tests under ASan/UBSan)
 #   make asan       unit tests under AddressSanitizer + UBSan (clang)
@@ -27,7 +28,7 @@ APP      = $(BUILD)/umppmFoam
 UNIT_SRC = $(wildcard tests/unit/test_*.c)
 UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 
-.PHONY: all check unit integration asan debug fuzz deps clean
+.PHONY: all run check unit integration asan debug fuzz deps clean
 .SECONDARY:
 
 all: $(APP)
@@ -53,10 +54,20 @@ unit: $(UNIT_BIN) $(APP)
 	@set -e; for t in $(UNIT_BIN); do echo "== $$t"; $$t; done
 
 # Tests against OpenFOAM's own tools (blockMesh, gmshToFoam, postProcess...).
-integration: $(APP)
-	@UMPPMFOAM=$(abspath $(APP)) tests/integration/run_all.sh
+integration: $(APP) $(BUILD)/geomcheck $(BUILD)/write_cavity_fields
+	@UMPPMFOAM=$(abspath $(APP)) GEOMCHECK=$(abspath $(BUILD)/geomcheck) \
+	    WRITE_CAVITY_FIELDS=$(abspath $(BUILD)/write_cavity_fields) tests/integration/run_all.sh
 
-check:
+$(BUILD)/%: tests/integration/%.c $(LIB)
+	$(CC) $(CPPFLAGS) $(CFLAGS_ALL) -o $@ $< $(LIB) $(LDLIBS)
+
+# README command 1: install what is missing, build, run the default tutorial.
+run: deps
+	$(MAKE) all
+	tutorials/cavity/Allclean && tutorials/cavity/Allrun
+
+# README command 2 (and .ci/run): the whole test suite, from nothing.
+check: deps
 	$(MAKE) BUILD=build/check WERROR=-Werror unit
 	$(MAKE) BUILD=build/check WERROR=-Werror integration
 	$(MAKE) asan
