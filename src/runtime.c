@@ -53,6 +53,11 @@ void rt_init(rt_time *t, const case_control *c, double t0, const char *tname)
     /* Time's startTime_ is the value actually started from (also with
      * startFrom latestTime/firstTime); runTime writes count from it */
     t->ctl.start_time = t0;
+    /* Time::readDict reads endTime only for stopAt endTime; otherwise
+     * endTime is GREAT and the run ends through stopAt (checked: icoFoam
+     * with endTime = startTime and stopAt nextWrite runs to the next write) */
+    if (c->stop_at != CASE_STOP_ENDTIME)
+        t->ctl.end_time = 1e15;
     t->value = t0;
     t->delta_t = t->delta_t0 = t->delta_t_save = c->delta_t;
     t->precision = c->time_precision > 0 ? c->time_precision : 6;

@@ -14,7 +14,8 @@
 typedef struct rt_time {
     case_control ctl;      /* copy of the settings (ctl.start_time is set to
                               the actual start value, as Time's startTime_;
-                              ctl.end_time may be moved by stopAt) */
+                              ctl.end_time is 1e15 (GREAT) unless stopAt
+                              endTime, and is moved by stopAt) */
     double value;          /* current time */
     double delta_t;        /* deltaT of the current step */
     double delta_t0;       /* deltaT of the previous step (Time::deltaT0_) */
