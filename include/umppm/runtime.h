@@ -47,7 +47,9 @@ int rt_running(const rt_time *t);
 void rt_advance(rt_time *t);
 /* Before rt_advance: with adjustTimeStep, set delta_t from the max Courant
  * number of the last step as OpenFOAM's setDeltaT.H (factor <= 1.2, at most
- * maxDeltaT), then shorten it to land on adjustableRunTime write times. */
+ * maxDeltaT; maxDeltaT <= 0 means unlimited), then, for adjustableRunTime,
+ * change it (within x2 / x0.2) so that round(max(n, 1)) equal steps reach
+ * the next write time, as Time::adjustDeltaT (checked against pimpleFoam). */
 void rt_adjust_delta_t(rt_time *t, double courant_max);
 /* Once before the time loop, with the Courant number of the initial field
  * at the initial delta_t: OpenFOAM's setInitialDeltaT.H (with adjustTimeStep,
