@@ -39,15 +39,25 @@ typedef struct fio_format {
 ump_status fio_read_field(const char *path, const pmesh *pm, int ncomp,
                           fld_field **out, ump_err *err);
 
-/* Write field f as <dir>/<f->name> (.gz when compressing). location is the
- * header's location entry (the time name, e.g. "0.1"). */
-ump_status fio_write_field(const char *dir, const char *location,
+/* Write field f as <dir>/<f->name> (.gz when compressing; the other
+ * variant, if present, is removed as OpenFOAM does). location is the
+ * header's location entry (the time name, e.g. "0.1"), NULL for none. pm
+ * gives the patch names (f->patch[i] is pm->patch[i]; counts and sizes must
+ * match). fmt NULL means ascii, precision 6, plain. */
+ump_status fio_write_field(const char *dir, const char *location, const pmesh *pm,
                            const fld_field *f, const fio_format *fmt, ump_err *err);
 
-/* <dir>/uniform/time, always ascii and plain, as OpenFOAM writes it. */
+/* <dir>/uniform/time, always ascii and plain, as OpenFOAM writes it:
+ * value with 18 digits in the timeFormat (time_format as
+ * case_control.time_format_fixed: 0 general %.18g, 1 fixed %.18f,
+ * 2 scientific %.18e), name quoted, index, and deltaT/deltaT0 with
+ * write_precision significant digits (writePrecision, <= 0 means 6).
+ * location is the time name; the header says "<location>/uniform". */
 ump_status fio_write_uniform_time(const char *dir, const char *location,
                                   double value, const char *name, long index,
-                                  double deltaT, double deltaT0, ump_err *err);
+                                  double deltaT, double deltaT0,
+                                  int write_precision, int time_format,
+                                  ump_err *err);
 
 /* A time directory being written. */
 typedef struct fio_timedir {
@@ -69,11 +79,13 @@ void fio_timedir_abort(fio_timedir *td);
 /* Create directories along path (mkdir -p). */
 ump_status fio_mkdir_p(const char *path, ump_err *err);
 
-/* Standard OpenFOAM-style file banner + FoamFile header; writes to fp.
- * location may be NULL. binary selects "format binary" and the arch entry. */
+/* Standard OpenFOAM-style file banner + FoamFile header, the divider and
+ * the blank line after it; writes to fp. location may be NULL. binary
+ * selects "format binary" and the arch entry. */
 void fio_write_header(FILE *fp, const char *cls, const char *location,
                       const char *object, int binary);
-/* Trailing divider line. */
+/* Two newlines and the trailing divider line, as OpenFOAM ends a file
+ * (the caller's last line ends with its own newline). */
 void fio_write_footer(FILE *fp);
 
 #endif

@@ -1,0 +1,640 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * fieldio_write.c -- the writing half of fieldio.h: volScalarField and
+ * volVectorField files, <time>/uniform/time, and time directories that
+ * appear atomically.
+ *
+ * The layout is OpenFOAM v1912's, byte for byte after the banner (checked
+ * against icoFoam and pimpleFoam output): keywords padded to column 17,
+ * `uniform X` when a non-empty field has all elements equal, ascii lists of
+ * up to 10 elements on one line and longer ones one element per line,
+ * binary lists as "\nN\n(" + little-endian doubles + ")", empty lists
+ * "0()" (ascii) or "0" (binary) without a List<> prefix.
+ */
+#include "umppm/fieldio.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#define DIVIDER_STAR \
+    "// ************************************************************************* //"
+#define DIVIDER_DOT \
+    "// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //"
+
+/* OpenFOAM's Ostream::writeKeyword pads keywords to this width. */
+#define KEY_WIDTH 16
+/* OpenFOAM's shortListLen: ascii lists this long or shorter stay on one line. */
+#define SHORT_LIST 10
+
+/* Output to a plain FILE or a gzip stream through one small buffer, so the
+ * same formatting code serves both and errors are collected once. */
+typedef struct sink {
+    FILE *fp;
+    gzFile gz;
+    int failed;
+    size_t len;
+    char buf[16384];
+} sink;
+
+static void sink_flush(sink *s)
+{
+    if (s->len && !s->failed) {
+        if (s->gz) {
+            if (gzwrite(s->gz, s->buf, (unsigned)s->len) != (int)s->len)
+                s->failed = 1;
+        } else if (fwrite(s->buf, 1, s->len, s->fp) != s->len) {
+            s->failed = 1;
+        }
+    }
+    s->len = 0;
+}
+
+static void sink_put(sink *s, const void *p, size_t n)
+{
+    const char *c = p;
+    while (n) {
+        if (s->len == sizeof s->buf)
+            sink_flush(s);
+        size_t k = sizeof s->buf - s->len;
+        if (k > n)
+            k = n;
+        memcpy(s->buf + s->len, c, k);
+        s->len += k;
+        c += k;
+        n -= k;
+    }
+}
+
+static void sink_puts(sink *s, const char *str)
+{
+    sink_put(s, str, strlen(str));
+}
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+static void sink_printf(sink *s, const char *fmt, ...)
+{
+    char small[256];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(small, sizeof small, fmt, ap);
+    va_end(ap);
+    if (n < 0) {
+        s->failed = 1;
+        return;
+    }
+    if ((size_t)n < sizeof small) {
+        sink_put(s, small, (size_t)n);
+        return;
+    }
+    /* long names: format again into a buffer of the right size */
+    char *big = malloc((size_t)n + 1);
+    if (!big) {
+        s->failed = 1;
+        return;
+    }
+    va_start(ap, fmt);
+    vsnprintf(big, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    sink_put(s, big, (size_t)n);
+    free(big);
+}
+
+/* A number as C++ ostream writes it in its default (general) float format. */
+static void put_num(sink *s, double v, int prec)
+{
+    sink_printf(s, "%.*g", prec, v);
+}
+
+/* One element: a scalar, or "(x y z)". OpenFOAM writes both ascii and
+ * binary single values as text, without inner padding. */
+static void put_elem(sink *s, const double *v, int ncomp, int prec)
+{
+    if (ncomp == 1) {
+        put_num(s, v[0], prec);
+        return;
+    }
+    sink_puts(s, "(");
+    for (int k = 0; k < ncomp; k++) {
+        if (k)
+            sink_puts(s, " ");
+        put_num(s, v[k], prec);
+    }
+    sink_puts(s, ")");
+}
+
+/* The key, then spaces to column KEY_WIDTH (at least one), after indent. */
+static void put_key(sink *s, int indent, const char *key)
+{
+    static const char spaces[] = "                                ";
+    sink_put(s, spaces, (size_t)indent);
+    sink_puts(s, key);
+    size_t len = strlen(key);
+    size_t pad = len < KEY_WIDTH ? KEY_WIDTH - len : 1;
+    sink_put(s, spaces, pad);
+}
+
+static void put_raw_le(sink *s, const double *v, size_t n)
+{
+    unsigned char b[8];
+    for (size_t i = 0; i < n; i++) {
+        uint64_t bits;
+        memcpy(&bits, &v[i], sizeof bits);
+        /* written byte by byte so big-endian hosts still produce LSB data */
+        for (int k = 0; k < 8; k++)
+            b[k] = (unsigned char)(bits >> (8 * k));
+        sink_put(s, b, sizeof b);
+    }
+}
+
+/* OpenFOAM's Field::writeEntry: "uniform X" when non-empty and all elements
+ * equal, else "nonuniform" + the list; then ";\n". */
+static void put_field_value(sink *s, const double *v, ump_idx n, int ncomp,
+                            int binary, int prec)
+{
+    int uniform = n > 0;
+    for (ump_idx i = 1; uniform && i < n; i++)
+        for (int k = 0; k < ncomp; k++)
+            if (!(v[(size_t)i * ncomp + k] == v[k])) {
+                uniform = 0;
+                break;
+            }
+    if (uniform) {
+        sink_puts(s, "uniform ");
+        put_elem(s, v, ncomp, prec);
+    } else if (n == 0) {
+        /* List::writeEntry drops the List<T> prefix of empty lists */
+        sink_puts(s, binary ? "nonuniform 0" : "nonuniform 0()");
+    } else {
+        sink_puts(s, ncomp == 1 ? "nonuniform List<scalar> " : "nonuniform List<vector> ");
+        if (binary) {
+            sink_printf(s, "\n%ld\n(", (long)n);
+            put_raw_le(s, v, (size_t)n * (size_t)ncomp);
+            sink_puts(s, ")");
+        } else if (n <= SHORT_LIST) {
+            sink_printf(s, "%ld(", (long)n);
+            for (ump_idx i = 0; i < n; i++) {
+                if (i)
+                    sink_puts(s, " ");
+                put_elem(s, v + (size_t)i * ncomp, ncomp, prec);
+            }
+            sink_puts(s, ")");
+        } else {
+            sink_printf(s, "\n%ld\n(\n", (long)n);
+            for (ump_idx i = 0; i < n; i++) {
+                put_elem(s, v + (size_t)i * ncomp, ncomp, prec);
+                sink_puts(s, "\n");
+            }
+            sink_puts(s, ")\n");
+        }
+    }
+    sink_puts(s, ";\n");
+}
+
+static void put_header(sink *s, const char *cls, const char *location,
+                       const char *object, int binary)
+{
+    sink_puts(s,
+        "/*--------------------------------*- C++ -*----------------------------------*\\\n"
+        "| =========                 |                                                 |\n"
+        "| \\\\      /  F ield         | umppmFoam: OpenFOAM v1912 case file format      |\n"
+        "|  \\\\    /   O peration     | Written by umppmFoam, not by OpenFOAM           |\n"
+        "|   \\\\  /    A nd           |                                                 |\n"
+        "|    \\\\/     M anipulation  |                                                 |\n"
+        "\\*---------------------------------------------------------------------------*/\n"
+        "FoamFile\n{\n"
+        "    version     2.0;\n");
+    sink_puts(s, binary ? "    format      binary;\n" : "    format      ascii;\n");
+    sink_printf(s, "    class       %s;\n", cls);
+    if (binary)
+        sink_puts(s, "    arch        \"LSB;label=32;scalar=64\";\n");
+    if (location)
+        sink_printf(s, "    location    \"%s\";\n", location);
+    sink_printf(s, "    object      %s;\n", object);
+    sink_puts(s, "}\n" DIVIDER_DOT "\n\n");
+}
+
+static void put_footer(sink *s)
+{
+    sink_puts(s, "\n\n" DIVIDER_STAR "\n");
+}
+
+void fio_write_header(FILE *fp, const char *cls, const char *location,
+                      const char *object, int binary)
+{
+    sink *s = calloc(1, sizeof *s);
+    if (!s)
+        return;
+    s->fp = fp;
+    put_header(s, cls, location, object, binary);
+    sink_flush(s);
+    free(s);
+}
+
+void fio_write_footer(FILE *fp)
+{
+    fputs("\n\n" DIVIDER_STAR "\n", fp);
+}
+
+/* ---- directories ------------------------------------------------------ */
+
+ump_status fio_mkdir_p(const char *path, ump_err *err)
+{
+    UMP_CHECK(path && *path, err, UMP_ERR_INPUT, "fio_mkdir_p: empty path");
+    char *p = ump_strdup(path);
+    if (!p)
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+    size_t len = strlen(p);
+    while (len > 1 && p[len - 1] == '/')
+        p[--len] = '\0';
+    /* create each prefix in turn; an existing directory is fine */
+    for (char *c = p + 1;; c++) {
+        int last = (*c == '\0');
+        if (*c == '/' || last) {
+            char keep = *c;
+            *c = '\0';
+            if (mkdir(p, 0777) != 0) {
+                int e = errno;
+                struct stat st;
+                if (e != EEXIST || stat(p, &st) != 0 || !S_ISDIR(st.st_mode)) {
+                    ump_status rc = UMP_FAIL(err, UMP_ERR_IO, "%s: cannot create directory: %s",
+                                             p, strerror(e == EEXIST ? ENOTDIR : e));
+                    free(p);
+                    return rc;
+                }
+            }
+            *c = keep;
+        }
+        if (last)
+            break;
+    }
+    free(p);
+    return UMP_OK;
+}
+
+/* Remove a file or a directory tree without following symbolic links.
+ * Returns 0 on success (or when path does not exist). */
+static int rm_tree(const char *path)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0)
+        return errno == ENOENT ? 0 : -1;
+    if (!S_ISDIR(st.st_mode))
+        return unlink(path);
+    DIR *d = opendir(path);
+    if (!d)
+        return -1;
+    int rc = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        size_t n = strlen(path) + strlen(e->d_name) + 2;
+        char *child = malloc(n);
+        if (!child) {
+            rc = -1;
+            break;
+        }
+        snprintf(child, n, "%s/%s", path, e->d_name);
+        if (rm_tree(child) != 0)
+            rc = -1;
+        free(child);
+    }
+    closedir(d);
+    if (rmdir(path) != 0)
+        rc = -1;
+    return rc;
+}
+
+static int path_exists(const char *path)
+{
+    struct stat st;
+    return lstat(path, &st) == 0;
+}
+
+ump_status fio_timedir_begin(const char *case_dir, const char *name,
+                             fio_timedir *td, ump_err *err)
+{
+    UMP_CHECK(td, err, UMP_ERR_INPUT, "fio_timedir_begin: no timedir");
+    memset(td, 0, sizeof *td);
+    UMP_CHECK(case_dir && *case_dir, err, UMP_ERR_INPUT, "fio_timedir_begin: empty case path");
+    UMP_CHECK(name && *name && !strchr(name, '/') && strcmp(name, ".") != 0
+                  && strcmp(name, "..") != 0,
+              err, UMP_ERR_INPUT, "%s: invalid time directory name '%s'", case_dir,
+              name ? name : "");
+    UMP_CHECK(strlen(name) < sizeof td->name, err, UMP_ERR_INPUT,
+              "%s: time name '%s' too long", case_dir, name);
+    long pid = (long)getpid();
+    int n1 = snprintf(td->final_dir, sizeof td->final_dir, "%s/%s", case_dir, name);
+    int n2 = snprintf(td->tmp_dir, sizeof td->tmp_dir, "%s/.%s.tmp.%ld", case_dir, name, pid);
+    UMP_CHECK(n1 > 0 && n2 > 0 && (size_t)n1 < sizeof td->final_dir
+                  && (size_t)n2 < sizeof td->tmp_dir,
+              err, UMP_ERR_INPUT, "%s: path too long", case_dir);
+    memcpy(td->name, name, strlen(name) + 1);
+
+    struct stat st;
+    if (stat(case_dir, &st) != 0 || !S_ISDIR(st.st_mode))
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: case directory not found", case_dir);
+    /* a leftover of an earlier crashed run with the same pid */
+    if (rm_tree(td->tmp_dir) != 0)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot remove stale directory: %s",
+                        td->tmp_dir, strerror(errno));
+    if (mkdir(td->tmp_dir, 0777) != 0)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot create directory: %s",
+                        td->tmp_dir, strerror(errno));
+    td->open = 1;
+    return UMP_OK;
+}
+
+ump_status fio_timedir_commit(fio_timedir *td, ump_err *err)
+{
+    UMP_CHECK(td && td->open, err, UMP_ERR_INPUT, "fio_timedir_commit: no open time directory");
+    if (!path_exists(td->final_dir)) {
+        if (rename(td->tmp_dir, td->final_dir) != 0)
+            return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot rename into place: %s",
+                            td->final_dir, strerror(errno));
+        td->open = 0;
+        return UMP_OK;
+    }
+
+    /* rename() cannot replace a non-empty directory: move the old one aside
+     * (hidden), move the new one in, then delete the old one. At every
+     * moment one complete version sits at final_dir or can be restored. */
+    char old[4200];
+    size_t case_len = strlen(td->final_dir) - strlen(td->name) - 1;
+    int n = snprintf(old, sizeof old, "%.*s/.%s.old.%ld", (int)case_len, td->final_dir,
+                     td->name, (long)getpid());
+    UMP_CHECK(n > 0 && (size_t)n < sizeof old, err, UMP_ERR_INPUT, "%s: path too long",
+              td->final_dir);
+    if (rm_tree(old) != 0)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot remove stale directory: %s", old,
+                        strerror(errno));
+    if (rename(td->final_dir, old) != 0)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot move the previous version aside: %s",
+                        td->final_dir, strerror(errno));
+    if (rename(td->tmp_dir, td->final_dir) != 0) {
+        int e = errno;
+        /* put the previous version back; the new one stays in tmp_dir for
+         * fio_timedir_abort() */
+        (void)rename(old, td->final_dir);
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot rename into place: %s",
+                        td->final_dir, strerror(e));
+    }
+    td->open = 0;
+    /* the new directory is in place; a failure to delete the hidden old
+     * copy loses nothing, so it is not reported */
+    (void)rm_tree(old);
+    return UMP_OK;
+}
+
+void fio_timedir_abort(fio_timedir *td)
+{
+    if (!td || !td->open)
+        return;
+    (void)rm_tree(td->tmp_dir);
+    td->open = 0;
+}
+
+/* ---- files ------------------------------------------------------------ */
+
+/* Open path for writing, plain or gzip. */
+static int sink_open(sink *s, const char *path, int gz)
+{
+    memset(s, 0, offsetof(sink, buf));
+    if (gz) {
+        s->gz = gzopen(path, "wb");
+        return s->gz ? 0 : -1;
+    }
+    s->fp = fopen(path, "wb");
+    return s->fp ? 0 : -1;
+}
+
+/* Flush and close; returns 0 when every byte was written. */
+static int sink_close(sink *s)
+{
+    sink_flush(s);
+    int bad = s->failed;
+    if (s->gz) {
+        if (gzclose(s->gz) != Z_OK)
+            bad = 1;
+    } else if (s->fp) {
+        if (ferror(s->fp))
+            bad = 1;
+        if (fclose(s->fp) != 0)
+            bad = 1;
+    }
+    s->gz = NULL;
+    s->fp = NULL;
+    return bad ? -1 : 0;
+}
+
+/* Does the boundary type write a `value` entry (v1912)? */
+static int bc_writes_value(fld_bc_type t)
+{
+    switch (t) {
+    case FLD_BC_CALCULATED:
+    case FLD_BC_FIXEDVALUE:
+    case FLD_BC_MOVINGWALLVELOCITY:
+    case FLD_BC_FIXEDFLUXPRESSURE:
+    case FLD_BC_INLETOUTLET:
+        return 1;
+    default:
+        return 0;
+    }
+}
+
+/* The keyword of the second value list, or NULL. */
+static const char *bc_aux_key(fld_bc_type t)
+{
+    if (t == FLD_BC_INLETOUTLET)
+        return "inletValue";
+    if (t == FLD_BC_FIXEDFLUXPRESSURE)
+        return "gradient";
+    return NULL;
+}
+
+static ump_status check_field(const char *path, const pmesh *pm, const fld_field *f,
+                              ump_err *err)
+{
+    UMP_CHECK(f->ncomp == 1 || f->ncomp == 3, err, UMP_ERR_INPUT,
+              "%s: field has %d components (expected 1 or 3)", path, f->ncomp);
+    UMP_CHECK(f->ncells >= 0 && (f->ncells == 0 || f->internal), err, UMP_ERR_INPUT,
+              "%s: field has no internal values", path);
+    UMP_CHECK(f->npatches == pm->npatches, err, UMP_ERR_INPUT,
+              "%s: field has %d patches, mesh has %d", path, f->npatches, pm->npatches);
+    for (int i = 0; i < f->npatches; i++) {
+        const fld_patch *p = &f->patch[i];
+        const char *pn = pm->patch[i].name ? pm->patch[i].name : "";
+        UMP_CHECK(*pn, err, UMP_ERR_INPUT, "%s: mesh patch %d has no name", path, i);
+        UMP_CHECK((int)p->type >= 0 && p->type < FLD_BC_NTYPES, err, UMP_ERR_INPUT,
+                  "%s: patch %s has an invalid boundary type %d", path, pn, (int)p->type);
+        UMP_CHECK(p->n == pm->patch[i].n, err, UMP_ERR_INPUT,
+                  "%s: patch %s has %ld values, mesh patch has %ld faces", path, pn,
+                  (long)p->n, (long)pm->patch[i].n);
+        UMP_CHECK(p->n == 0 || !bc_writes_value(p->type) || p->value, err, UMP_ERR_INPUT,
+                  "%s: patch %s (%s) has no values", path, pn, fld_bc_name(p->type));
+        UMP_CHECK(p->n == 0 || !bc_aux_key(p->type) || p->aux, err, UMP_ERR_INPUT,
+                  "%s: patch %s (%s) has no %s", path, pn, fld_bc_name(p->type),
+                  bc_aux_key(p->type) ? bc_aux_key(p->type) : "");
+        for (int k = 0; k < p->nextra; k++)
+            UMP_CHECK(p->extra && p->extra[k].key && *p->extra[k].key && p->extra[k].text,
+                      err, UMP_ERR_INPUT, "%s: patch %s has an incomplete extra entry",
+                      path, pn);
+    }
+    return UMP_OK;
+}
+
+static void put_field(sink *s, const pmesh *pm, const fld_field *f, const char *location,
+                      int binary, int prec)
+{
+    static const double none[3] = {0, 0, 0};
+    put_header(s, f->ncomp == 1 ? "volScalarField" : "volVectorField", location, f->name,
+               binary);
+    put_key(s, 0, "dimensions");
+    sink_puts(s, "[");
+    for (int k = 0; k < 7; k++) {
+        if (k)
+            sink_puts(s, " ");
+        put_num(s, f->dims[k], prec);
+    }
+    sink_puts(s, "];\n\n\n");
+    put_key(s, 0, "internalField");
+    put_field_value(s, f->internal ? f->internal : none, f->ncells, f->ncomp, binary, prec);
+    sink_puts(s, "\nboundaryField\n{\n");
+    for (int i = 0; i < f->npatches; i++) {
+        const fld_patch *p = &f->patch[i];
+        sink_printf(s, "    %s\n    {\n", pm->patch[i].name);
+        put_key(s, 8, "type");
+        sink_printf(s, "%s;\n", fld_bc_name(p->type));
+        /* OpenFOAM writes a type's own optional keywords (phi of
+         * inletOutlet...) right after type, before its value lists */
+        for (int k = 0; k < p->nextra; k++) {
+            put_key(s, 8, p->extra[k].key);
+            sink_printf(s, "%s;\n", p->extra[k].text);
+        }
+        const char *aux = bc_aux_key(p->type);
+        if (aux) {
+            put_key(s, 8, aux);
+            put_field_value(s, p->aux ? p->aux : none, p->n, f->ncomp, binary, prec);
+        }
+        if (bc_writes_value(p->type)) {
+            put_key(s, 8, "value");
+            put_field_value(s, p->value ? p->value : none, p->n, f->ncomp, binary, prec);
+        }
+        sink_puts(s, "    }\n");
+    }
+    sink_puts(s, "}\n");
+    put_footer(s);
+}
+
+ump_status fio_write_field(const char *dir, const char *location, const pmesh *pm,
+                           const fld_field *f, const fio_format *fmt, ump_err *err)
+{
+    static const fio_format def = {0, 6, 0};
+    UMP_CHECK(dir && *dir && f && pm, err, UMP_ERR_INPUT, "fio_write_field: missing argument");
+    UMP_CHECK(f->name && *f->name && !strchr(f->name, '/'), err, UMP_ERR_INPUT,
+              "%s: invalid field name '%s'", dir, f->name ? f->name : "");
+    if (!fmt)
+        fmt = &def;
+    int prec = fmt->precision > 0 ? fmt->precision : 6;
+    /* v1912 disables compression for binary output */
+    int gz = fmt->compress && !fmt->binary;
+
+    char path[4200], other[4200];
+    int n1 = snprintf(path, sizeof path, "%s/%s%s", dir, f->name, gz ? ".gz" : "");
+    int n2 = snprintf(other, sizeof other, "%s/%s%s", dir, f->name, gz ? "" : ".gz");
+    UMP_CHECK(n1 > 0 && n2 > 0 && (size_t)n1 < sizeof path && (size_t)n2 < sizeof other,
+              err, UMP_ERR_INPUT, "%s: path too long", dir);
+    UMP_CALL(check_field(path, pm, f, err));
+
+    sink *s = malloc(sizeof *s);
+    if (!s)
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+    if (sink_open(s, path, gz) != 0) {
+        int e = errno;
+        free(s);
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot open for writing: %s", path,
+                        strerror(e));
+    }
+    put_field(s, pm, f, location, fmt->binary, prec);
+    errno = 0;
+    if (sink_close(s) != 0) {
+        int e = errno;
+        free(s);
+        remove(path);
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: write failed: %s", path,
+                        e ? strerror(e) : "short write");
+    }
+    free(s);
+    /* OpenFOAM deletes the other variant so readers cannot pick up a stale
+     * file (IFstream tries the plain name first) */
+    if (remove(other) != 0 && errno != ENOENT)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot remove stale file: %s", other,
+                        strerror(errno));
+    return UMP_OK;
+}
+
+ump_status fio_write_uniform_time(const char *dir, const char *location,
+                                  double value, const char *name, long index,
+                                  double deltaT, double deltaT0,
+                                  int write_precision, int time_format,
+                                  ump_err *err)
+{
+    UMP_CHECK(dir && *dir && name, err, UMP_ERR_INPUT,
+              "fio_write_uniform_time: missing argument");
+    int prec = write_precision > 0 ? write_precision : 6;
+    char udir[4200], path[4200], loc[4200];
+    int n1 = snprintf(udir, sizeof udir, "%s/uniform", dir);
+    int n2 = snprintf(path, sizeof path, "%s/uniform/time", dir);
+    int n3 = snprintf(loc, sizeof loc, "%s/uniform", location ? location : "");
+    UMP_CHECK(n1 > 0 && n2 > 0 && n3 > 0 && (size_t)n1 < sizeof udir
+                  && (size_t)n2 < sizeof path && (size_t)n3 < sizeof loc,
+              err, UMP_ERR_INPUT, "%s: path too long", dir);
+    UMP_CALL(fio_mkdir_p(udir, err));
+
+    sink *s = malloc(sizeof *s);
+    if (!s)
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+    if (sink_open(s, path, 0) != 0) {
+        int e = errno;
+        free(s);
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot open for writing: %s", path,
+                        strerror(e));
+    }
+    put_header(s, "dictionary", location ? loc : NULL, "time", 0);
+    /* Time::writeTimeDict: the value is a time name with 18 digits in the
+     * case's timeFormat; deltaT and deltaT0 use the stream precision */
+    put_key(s, 0, "value");
+    if (time_format == 1)
+        sink_printf(s, "%.18f;\n\n", value);
+    else if (time_format == 2)
+        sink_printf(s, "%.18e;\n\n", value);
+    else
+        sink_printf(s, "%.18g;\n\n", value);
+    put_key(s, 0, "name");
+    sink_printf(s, "\"%s\";\n\n", name);
+    put_key(s, 0, "index");
+    sink_printf(s, "%ld;\n\n", index);
+    put_key(s, 0, "deltaT");
+    sink_printf(s, "%.*g;\n\n", prec, deltaT);
+    put_key(s, 0, "deltaT0");
+    sink_printf(s, "%.*g;\n", prec, deltaT0);
+    put_footer(s);
+    errno = 0;
+    if (sink_close(s) != 0) {
+        int e = errno;
+        free(s);
+        remove(path);
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: write failed: %s", path,
+                        e ? strerror(e) : "short write");
+    }
+    free(s);
+    return UMP_OK;
+}
