@@ -229,7 +229,7 @@ static int write_fields(const char *case_dir, const char *tname, const pmesh *pm
     }
     for (int i = 0; i < 4; i++) {
         printf("Writing %s/%s\n", tname, f[i]->name);
-        if (fio_write_field(td.tmp_dir, tname, f[i], &fmt, &err) != UMP_OK) {
+        if (fio_write_field(td.tmp_dir, tname, pm, f[i], &fmt, &err) != UMP_OK) {
             fio_timedir_abort(&td);
             rc = fatal(&err);
             goto done;

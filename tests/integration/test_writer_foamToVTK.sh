@@ -11,17 +11,19 @@
 #     our cell values exactly (row j is cell 10 + 20 j).
 # Exits non-zero on any failure or mismatch.
 #
-# Usage: tests/integration/test_writer_foamToVTK.sh <path-to-write_cavity_fields>
+# Usage: tests/integration/test_writer_foamToVTK.sh [<path-to-write_cavity_fields>]
+#        (default: $WRITE_CAVITY_FIELDS, as run_all.sh passes it)
 
 set -eu
 
-if [ $# -ne 1 ] || [ ! -x "$1" ]; then
-    echo "usage: $0 <path-to-built-write_cavity_fields>" >&2
+arg=${1:-${WRITE_CAVITY_FIELDS:-}}
+if [ -z "$arg" ] || [ ! -x "$arg" ]; then
+    echo "FAIL: give the built write_cavity_fields program as argument or in WRITE_CAVITY_FIELDS" >&2
     exit 2
 fi
-case "$1" in
-    /*) prog=$1 ;;
-    *) prog=$(pwd)/$1 ;;
+case "$arg" in
+    /*) prog=$arg ;;
+    *) prog=$(pwd)/$arg ;;
 esac
 
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
