@@ -127,6 +127,12 @@ ump_status foam_file_read(const char *path, foam_file **out, ump_err *err);
 /* Parse an in-memory buffer (name used in messages and for #include paths). */
 ump_status foam_file_parse(const char *name, const char *buf, size_t len,
                            foam_file **out, ump_err *err);
+/* As foam_file_parse, with FOAM_PARSE_* flags. FOAM_PARSE_NO_INCLUDE makes
+ * every #include* directive fail (UMP_ERR_UNSUPPORTED) without touching the
+ * file system (used by the fuzz harness). */
+#define FOAM_PARSE_NO_INCLUDE 1u
+ump_status foam_file_parse_ex(const char *name, const char *buf, size_t len,
+                              unsigned flags, foam_file **out, ump_err *err);
 void foam_file_free(foam_file **f);
 
 /* 1 if path or path.gz exists (as a regular file). */

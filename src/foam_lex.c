@@ -1,0 +1,736 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * foam_lex.c -- FoamFile tokenizer: storage arena, OpenFOAM v1912 lexical
+ * rules (ISstream), binary contiguous blocks, and reading plain or gzip
+ * files through zlib.
+ *
+ * The tokenizer works on an in-memory buffer and produces one token at a
+ * time; strings go into the arena, so tokens never need freeing.
+ */
+#include "foam_internal.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <zlib.h>
+
+/* ---- arena --------------------------------------------------------------- */
+
+/* Blocks are allocated with this many bytes of payload; larger requests get
+ * a block of their own so that a big list never wastes a partial block. */
+enum { ARENA_BLOCK = 64 * 1024, ARENA_ALIGN = 16 };
+
+typedef struct arena_blk {
+    struct arena_blk *next;
+    size_t cap, used;
+} arena_blk;
+
+typedef struct arena_cleanup {
+    struct arena_cleanup *next;
+    void *p;
+    void (*fn)(void *);
+} arena_cleanup;
+
+struct foam_arena {
+    arena_blk *head;        /* current bump block first */
+    arena_cleanup *clean;
+};
+
+/* Header size rounded so that the payload is ARENA_ALIGN aligned. */
+#define BLK_HDR (((sizeof(arena_blk) + ARENA_ALIGN - 1) / ARENA_ALIGN) * ARENA_ALIGN)
+
+foam_arena *arena_new(void)
+{
+    return ump_alloc_array(1, sizeof(foam_arena));
+}
+
+void arena_free(foam_arena *a)
+{
+    if (!a)
+        return;
+    /* cleanup records live in the arena blocks: run them before freeing */
+    for (arena_cleanup *c = a->clean; c; c = c->next)
+        c->fn(c->p);
+    arena_blk *b = a->head;
+    while (b) {
+        arena_blk *nx = b->next;
+        free(b);
+        b = nx;
+    }
+    free(a);
+}
+
+void *arena_alloc(foam_arena *a, size_t n, size_t size)
+{
+    if (size != 0 && n > SIZE_MAX / size)
+        return NULL;
+    size_t bytes = n * size;
+    if (bytes > SIZE_MAX - ARENA_ALIGN - BLK_HDR)
+        return NULL;
+    bytes = (bytes + ARENA_ALIGN - 1) / ARENA_ALIGN * ARENA_ALIGN;
+    if (bytes == 0)
+        bytes = ARENA_ALIGN;
+    if (bytes > ARENA_BLOCK / 4) {
+        /* dedicated block, linked behind the current bump block */
+        arena_blk *b = ump_alloc_array(1, BLK_HDR + bytes);
+        if (!b)
+            return NULL;
+        b->cap = b->used = bytes;
+        if (a->head) {
+            b->next = a->head->next;
+            a->head->next = b;
+        } else {
+            a->head = b;
+        }
+        return (char *)b + BLK_HDR;
+    }
+    arena_blk *h = a->head;
+    if (!h || h->cap - h->used < bytes) {
+        h = ump_realloc_array(NULL, 1, BLK_HDR + ARENA_BLOCK);
+        if (!h)
+            return NULL;
+        h->cap = ARENA_BLOCK;
+        h->used = 0;
+        h->next = a->head;
+        a->head = h;
+    }
+    void *p = (char *)h + BLK_HDR + h->used;
+    h->used += bytes;
+    memset(p, 0, bytes);
+    return p;
+}
+
+char *arena_strndup(foam_arena *a, const char *s, size_t n)
+{
+    char *d = arena_alloc(a, n + 1, 1);
+    if (d) {
+        if (n)
+            memcpy(d, s, n);
+        d[n] = '\0';
+    }
+    return d;
+}
+
+int arena_adopt(foam_arena *a, void *p, void (*fn)(void *))
+{
+    arena_cleanup *c = arena_alloc(a, 1, sizeof *c);
+    if (!c) {
+        fn(p);
+        return 0;
+    }
+    c->p = p;
+    c->fn = fn;
+    c->next = a->clean;
+    a->clean = c;
+    return 1;
+}
+
+/* ---- character classes (ISstream / word::valid of v1912) ----------------- */
+
+static int is_blank(int c)
+{
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+}
+
+/* word::valid(): anything but blanks, quotes, '/', ';', '{', '}' */
+static int is_word_char(int c)
+{
+    return !is_blank(c) && c != '"' && c != '\'' && c != '/' && c != ';' &&
+           c != '{' && c != '}';
+}
+
+/* Punctuation that is a token of its own when it starts a token. '-' is
+ * punctuation only when no number follows (handled with numbers). */
+static int is_punct_start(int c)
+{
+    return c == ';' || c == '(' || c == ')' || c == '[' || c == ']' || c == '{' ||
+           c == '}' || c == ':' || c == ',' || c == '=' || c == '+' || c == '*' ||
+           c == '/';
+}
+
+static int is_number_char(int c)
+{
+    return (c >= '0' && c <= '9') || c == '+' || c == '-' || c == '.' || c == 'e' ||
+           c == 'E';
+}
+
+/* ---- lexer ----------------------------------------------------------------- */
+
+void lex_init(foam_lexer *lx, const char *buf, size_t len, const char *file,
+              foam_arena *a, ump_err *err)
+{
+    memset(lx, 0, sizeof *lx);
+    lx->buf = buf;
+    lx->len = len;
+    lx->line = 1;
+    lx->file = file;
+    lx->label_bytes = 4;
+    lx->scalar_bytes = 8;
+    lx->arena = a;
+    lx->err = err;
+}
+
+int lex_is_eof(const foam_token *t)
+{
+    return t->type == FOAM_TOK_PUNCT && t->v.punct == 0;
+}
+
+/* Skip blanks and comments. A '/' that starts no comment is left alone. */
+static ump_status skip_blank(foam_lexer *lx)
+{
+    const char *b = lx->buf;
+    size_t n = lx->len, i = lx->pos;
+    int line = lx->line;
+    for (;;) {
+        while (i < n && is_blank((unsigned char)b[i])) {
+            if (b[i] == '\n')
+                line++;
+            i++;
+        }
+        if (i + 1 < n && b[i] == '/' && b[i + 1] == '/') {
+            i += 2;
+            while (i < n && b[i] != '\n')
+                i++;
+            continue;
+        }
+        if (i + 1 < n && b[i] == '/' && b[i + 1] == '*') {
+            int start = line;
+            i += 2;
+            for (;;) {
+                if (i + 1 >= n) {
+                    lx->pos = n;
+                    lx->line = line;
+                    return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                                    "%s:%d: unterminated /* comment, found end of file",
+                                    lx->file, start);
+                }
+                if (b[i] == '*' && b[i + 1] == '/') {
+                    i += 2;
+                    break;
+                }
+                if (b[i] == '\n')
+                    line++;
+                i++;
+            }
+            continue;
+        }
+        break;
+    }
+    lx->pos = i;
+    lx->line = line;
+    return UMP_OK;
+}
+
+static ump_status nomem(foam_lexer *lx)
+{
+    return UMP_FAIL(lx->err, UMP_ERR_NOMEM, "%s:%d: out of memory", lx->file, lx->line);
+}
+
+static ump_status make_word(foam_lexer *lx, size_t start, size_t end, foam_token *t)
+{
+    t->type = FOAM_TOK_WORD;
+    t->v.str = arena_strndup(lx->arena, lx->buf + start, end - start);
+    return t->v.str ? UMP_OK : nomem(lx);
+}
+
+/* A word: word characters, keeping balanced '(' ')' (div(phi,U)); an
+ * unmatched ')' ends it. Returns the end position. */
+static size_t scan_word(const foam_lexer *lx, size_t i, int allow_slash)
+{
+    const char *b = lx->buf;
+    int depth = 0;
+    while (i < lx->len) {
+        int c = (unsigned char)b[i];
+        if (!is_word_char(c) && !(allow_slash && c == '/'))
+            break;
+        if (c == '(')
+            depth++;
+        else if (c == ')') {
+            if (depth == 0)
+                break;
+            depth--;
+        }
+        i++;
+    }
+    return i;
+}
+
+/* "quoted string": \" becomes ", a backslash-newline becomes a newline,
+ * other backslashes stay (OpenFOAM keeps them); an unescaped newline is an
+ * error. */
+static ump_status lex_string(foam_lexer *lx, foam_token *t)
+{
+    const char *b = lx->buf;
+    size_t i = lx->pos + 1, n = lx->len;
+    int escaped = 0, start_line = lx->line;
+    size_t end = 0;
+    int found = 0;
+    for (; i < n; i++) {
+        char c = b[i];
+        if (c == '\\') {
+            escaped = !escaped;
+        } else if (c == '"') {
+            if (!escaped) {
+                end = i;
+                found = 1;
+                break;
+            }
+            escaped = 0;
+        } else if (c == '\n') {
+            if (!escaped)
+                return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                                "%s:%d: unterminated string (newline inside \"...\")",
+                                lx->file, start_line);
+            escaped = 0;
+        } else {
+            escaped = 0;
+        }
+    }
+    if (!found)
+        return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                        "%s:%d: unterminated string, found end of file", lx->file,
+                        start_line);
+    char *s = arena_alloc(lx->arena, end - lx->pos, 1);
+    if (!s)
+        return nomem(lx);
+    size_t o = 0;
+    escaped = 0;
+    for (i = lx->pos + 1; i < end; i++) {
+        char c = b[i];
+        if (c == '\\') {
+            escaped = !escaped;
+            s[o++] = c;
+        } else if ((c == '"' || c == '\n') && escaped) {
+            s[o - 1] = c; /* overwrite the backslash */
+            escaped = 0;
+            if (c == '\n')
+                lx->line++;
+        } else {
+            escaped = 0;
+            s[o++] = c;
+        }
+    }
+    s[o] = '\0';
+    t->type = FOAM_TOK_STRING;
+    t->v.str = s;
+    lx->pos = end + 1;
+    return UMP_OK;
+}
+
+/* #{ verbatim text #} -> string token (used by coded boundary conditions) */
+static ump_status lex_verbatim(foam_lexer *lx, foam_token *t)
+{
+    const char *b = lx->buf;
+    size_t i = lx->pos + 2, n = lx->len;
+    int line = lx->line;
+    for (; i + 1 < n; i++) {
+        if (b[i] == '#' && b[i + 1] == '}') {
+            t->type = FOAM_TOK_STRING;
+            t->v.str = arena_strndup(lx->arena, b + lx->pos + 2, i - lx->pos - 2);
+            if (!t->v.str)
+                return nomem(lx);
+            lx->pos = i + 2;
+            lx->line = line;
+            return UMP_OK;
+        }
+        if (b[i] == '\n')
+            line++;
+    }
+    return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                    "%s:%d: unterminated #{ verbatim block, found end of file", lx->file,
+                    lx->line);
+}
+
+/* Number: the run of [0-9+-.eE] as ISstream collects it. Digits only (with
+ * an optional leading '-') -> label, or scalar when it overflows int64;
+ * otherwise scalar when strtod takes the whole run; otherwise a word. */
+static ump_status lex_number(foam_lexer *lx, foam_token *t)
+{
+    const char *b = lx->buf;
+    size_t s = lx->pos, i = s + 1;
+    while (i < lx->len && is_number_char((unsigned char)b[i]))
+        i++;
+    size_t len = i - s;
+    if (len == 1 && b[s] == '-') {
+        t->type = FOAM_TOK_PUNCT;
+        t->v.punct = '-';
+        lx->pos = i;
+        return UMP_OK;
+    }
+    if (len >= 128)
+        return UMP_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: number too long (%zu characters)",
+                        lx->file, lx->line, len);
+    int neg = b[s] == '-';
+    int aslabel = b[s] != '.' && len > (size_t)neg;
+    for (size_t k = s + 1; k < i && aslabel; k++)
+        aslabel = b[k] >= '0' && b[k] <= '9';
+    lx->pos = i;
+    if (aslabel) {
+        uint64_t v = 0, lim = neg ? (uint64_t)INT64_MAX + 1u : (uint64_t)INT64_MAX;
+        int ok = 1;
+        for (size_t k = s + (size_t)neg; k < i; k++) {
+            unsigned d = (unsigned)(b[k] - '0');
+            if (v > (lim - d) / 10) {
+                ok = 0;
+                break;
+            }
+            v = v * 10 + d;
+        }
+        if (ok) {
+            t->type = FOAM_TOK_LABEL;
+            if (neg)
+                t->v.label = v == (uint64_t)INT64_MAX + 1u ? INT64_MIN : -(int64_t)v;
+            else
+                t->v.label = (int64_t)v;
+            return UMP_OK;
+        }
+    }
+    char nb[128];
+    memcpy(nb, b + s, len);
+    nb[len] = '\0';
+    char *endp;
+    errno = 0;
+    double d = strtod(nb, &endp);
+    if (endp == nb + len) {
+        t->type = FOAM_TOK_SCALAR;
+        t->v.scalar = d;
+        return UMP_OK;
+    }
+    return make_word(lx, s, i, t);
+}
+
+ump_status lex_next(foam_lexer *lx, foam_token *t)
+{
+    if (lx->has_back) {
+        *t = lx->back;
+        lx->has_back = 0;
+        return UMP_OK;
+    }
+    memset(t, 0, sizeof *t);
+    UMP_CALL(skip_blank(lx));
+    t->file = lx->file;
+    t->line = lx->line;
+    t->type = FOAM_TOK_PUNCT;
+    if (lx->pos >= lx->len) {
+        t->v.punct = 0; /* end of input */
+        return UMP_OK;
+    }
+    const char *b = lx->buf;
+    size_t p = lx->pos;
+    int c = (unsigned char)b[p];
+    int next = p + 1 < lx->len ? (unsigned char)b[p + 1] : -1;
+    if (is_punct_start(c)) {
+        t->v.punct = (char)c;
+        lx->pos++;
+        return UMP_OK;
+    }
+    if (c == '"')
+        return lex_string(lx, t);
+    if (c == '-' || c == '.' || (c >= '0' && c <= '9'))
+        return lex_number(lx, t);
+    if (c == '#') {
+        if (next == '{')
+            return lex_verbatim(lx, t);
+        if (next < 0 || !is_word_char(next))
+            return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                            "%s:%d: expected a directive name after '#'", lx->file, lx->line);
+        size_t e = scan_word(lx, p + 1, 0);
+        lx->pos = e;
+        return make_word(lx, p, e, t);
+    }
+    if (c == '$') {
+        if (next == '{') {
+            /* ${var} or ${{expr}}: up to the matching '}' */
+            int depth = 0;
+            size_t i = p + 1;
+            for (; i < lx->len; i++) {
+                if (b[i] == '{')
+                    depth++;
+                else if (b[i] == '}' && --depth == 0)
+                    break;
+                else if (b[i] == '\n')
+                    break;
+            }
+            if (i >= lx->len || b[i] != '}')
+                return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                                "%s:%d: expected '}' closing '${', found %s", lx->file,
+                                lx->line, i >= lx->len ? "end of file" : "end of line");
+            lx->pos = i + 1;
+            return make_word(lx, p, i + 1, t);
+        }
+        if (next < 0 || !(is_word_char(next) || next == '/'))
+            return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                            "%s:%d: expected a variable name after '$'", lx->file, lx->line);
+        size_t e = scan_word(lx, p + 1, 1);
+        if (e == p + 1)
+            return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                            "%s:%d: expected a variable name after '$'", lx->file, lx->line);
+        lx->pos = e;
+        return make_word(lx, p, e, t);
+    }
+    if (!is_word_char(c))
+        return UMP_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: unexpected character '%c'",
+                        lx->file, lx->line, c);
+    size_t e = scan_word(lx, p, 0);
+    lx->pos = e;
+    return make_word(lx, p, e, t);
+}
+
+ump_status lex_peek(foam_lexer *lx, foam_token *t)
+{
+    if (lx->has_back) {
+        *t = lx->back;
+        return UMP_OK;
+    }
+    UMP_CALL(lex_next(lx, t));
+    lx->back = *t;
+    lx->has_back = 1;
+    return UMP_OK;
+}
+
+void lex_unget(foam_lexer *lx, const foam_token *t)
+{
+    lx->back = *t;
+    lx->has_back = 1;
+}
+
+ump_status lex_peek_char(foam_lexer *lx, int *c)
+{
+    UMP_CALL(skip_blank(lx));
+    *c = lx->pos < lx->len ? (unsigned char)lx->buf[lx->pos] : -1;
+    return UMP_OK;
+}
+
+/* ---- binary blocks ---------------------------------------------------------- */
+
+static uint64_t get_le(const unsigned char *p, int nb)
+{
+    uint64_t v = 0;
+    for (int i = nb - 1; i >= 0; i--)
+        v = (v << 8) | p[i];
+    return v;
+}
+
+static int host_is_le(void)
+{
+    const uint16_t one = 1;
+    unsigned char c;
+    memcpy(&c, &one, 1);
+    return c == 1;
+}
+
+ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line,
+                    foam_token *out)
+{
+    if (lx->has_back)
+        return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                        "%s:%d: internal error: binary list after look-ahead", lx->file, line);
+    if (n < 0)
+        return UMP_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: negative list size %lld",
+                        lx->file, line, (long long)n);
+    memset(out, 0, sizeof *out);
+    out->type = FOAM_TOK_BLOB;
+    out->file = lx->file;
+    out->line = line;
+    out->v.blob.ncomp = ncomp;
+    out->v.blob.is_label = is_label;
+    int c;
+    UMP_CALL(lex_peek_char(lx, &c));
+    if (n == 0) {
+        /* "0" alone, or "0 ( )" / "0()" */
+        out->v.blob.data = arena_alloc(lx->arena, 1, sizeof(double));
+        if (!out->v.blob.data)
+            return nomem(lx);
+        if (c == '(') {
+            lx->pos++;
+            UMP_CALL(lex_peek_char(lx, &c));
+            if (c != ')')
+                return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                                "%s:%d: expected ')' closing empty list, found %s",
+                                lx->file, lx->line, c < 0 ? "end of file" : "other data");
+            lx->pos++;
+        }
+        return UMP_OK;
+    }
+    if (c != '(')
+        return UMP_FAIL(lx->err, c < 0 ? UMP_ERR_IO : UMP_ERR_PARSE,
+                        "%s:%d: expected '(' starting binary list of %lld elements, found %s",
+                        lx->file, lx->line, (long long)n,
+                        c < 0 ? "end of file (file cut short)" : "other data");
+    lx->pos++;
+    int csize = is_label ? lx->label_bytes : lx->scalar_bytes;
+    size_t avail = lx->len - lx->pos;
+    size_t per = (size_t)csize * (size_t)ncomp;
+    if ((uint64_t)n > (uint64_t)(avail / per))
+        return UMP_FAIL(lx->err, UMP_ERR_IO,
+                        "%s:%d: binary list of %lld elements cut short (%zu bytes left, "
+                        "%d-byte components)",
+                        lx->file, line, (long long)n, avail, csize);
+    size_t cnt = (size_t)n * (size_t)ncomp;
+    const unsigned char *src = (const unsigned char *)lx->buf + lx->pos;
+    void *data = arena_alloc(lx->arena, cnt, 8);
+    if (!data)
+        return nomem(lx);
+    int le = host_is_le();
+    if (is_label) {
+        int64_t *d = data;
+        if (csize == 8 && le) {
+            memcpy(d, src, cnt * 8);
+        } else {
+            for (size_t k = 0; k < cnt; k++) {
+                uint64_t u = get_le(src + k * (size_t)csize, csize);
+                if (csize == 4) {
+                    d[k] = (int32_t)(uint32_t)u;
+                } else {
+                    int64_t s;
+                    memcpy(&s, &u, 8);
+                    d[k] = s;
+                }
+            }
+        }
+    } else {
+        double *d = data;
+        if (csize == 8 && le) {
+            memcpy(d, src, cnt * 8);
+        } else {
+            for (size_t k = 0; k < cnt; k++) {
+                uint64_t u = get_le(src + k * (size_t)csize, csize);
+                if (csize == 4) {
+                    uint32_t u32 = (uint32_t)u;
+                    float f;
+                    memcpy(&f, &u32, 4);
+                    d[k] = f;
+                } else {
+                    memcpy(&d[k], &u, 8);
+                }
+            }
+        }
+    }
+    lx->pos += cnt * (size_t)csize;
+    out->v.blob.n = (size_t)n;
+    out->v.blob.data = data;
+    UMP_CALL(lex_peek_char(lx, &c));
+    if (c != ')')
+        return UMP_FAIL(lx->err, c < 0 ? UMP_ERR_IO : UMP_ERR_PARSE,
+                        "%s:%d: expected ')' after binary list of %lld elements, found %s",
+                        lx->file, lx->line, (long long)n,
+                        c < 0 ? "end of file (file cut short)" : "other data");
+    lx->pos++;
+    return UMP_OK;
+}
+
+int list_type_ncomp(const char *w, int *is_label)
+{
+    static const struct { const char *name; int ncomp, label; } types[] = {
+        {"List<label>", 1, 1},         {"List<scalar>", 1, 0},
+        {"List<vector>", 3, 0},        {"List<sphericalTensor>", 1, 0},
+        {"List<symmTensor>", 6, 0},    {"List<tensor>", 9, 0},
+        {"List<vector2D>", 2, 0},      {"List<symmTensor2D>", 3, 0},
+        {"List<tensor2D>", 4, 0},      {"List<sphericalTensor2D>", 1, 0},
+    };
+    for (size_t i = 0; i < sizeof types / sizeof types[0]; i++)
+        if (strcmp(w, types[i].name) == 0) {
+            if (is_label)
+                *is_label = types[i].label;
+            return types[i].ncomp;
+        }
+    return 0;
+}
+
+/* ---- files ----------------------------------------------------------------- */
+
+static int is_regular(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+char *resolve_gz(const char *path)
+{
+    if (is_regular(path))
+        return ump_strdup(path);
+    size_t n = strlen(path);
+    char *gz = ump_alloc_array(n + 4, 1);
+    if (!gz)
+        return NULL;
+    memcpy(gz, path, n);
+    memcpy(gz + n, ".gz", 4);
+    if (is_regular(gz))
+        return gz;
+    free(gz);
+    return NULL;
+}
+
+int foam_file_exists(const char *path)
+{
+    char *p = path ? resolve_gz(path) : NULL;
+    free(p);
+    return p != NULL;
+}
+
+/* zlib's gzread passes plain files through unchanged, so one reader serves
+ * both NAME and NAME.gz. */
+ump_status read_whole_file(const char *path, char **out, size_t *outlen, ump_err *err)
+{
+    *out = NULL;
+    *outlen = 0;
+    gzFile gz = gzopen(path, "rb");
+    if (!gz)
+        return UMP_FAIL(err, UMP_ERR_IO, "cannot open %s: %s", path,
+                        errno ? strerror(errno) : "gzopen failed");
+    size_t cap = 1 << 16, len = 0;
+    char *buf = ump_alloc_array(cap, 1);
+    if (!buf) {
+        gzclose(gz);
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+    }
+    for (;;) {
+        if (cap - len < 2) {
+            if (cap > SIZE_MAX / 2) {
+                free(buf);
+                gzclose(gz);
+                return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: file too large", path);
+            }
+            char *nb = ump_realloc_array(buf, cap * 2, 1);
+            if (!nb) {
+                free(buf);
+                gzclose(gz);
+                return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+            }
+            buf = nb;
+            cap *= 2;
+        }
+        size_t want = cap - len - 1;
+        if (want > (size_t)INT_MAX / 2)
+            want = (size_t)INT_MAX / 2;
+        int got = gzread(gz, buf + len, (unsigned)want);
+        if (got < 0) {
+            int zerr;
+            const char *msg = gzerror(gz, &zerr);
+            UMP_FAIL(err, UMP_ERR_IO, "cannot read %s: %s", path,
+                     zerr == Z_ERRNO ? strerror(errno) : msg);
+            free(buf);
+            gzclose(gz);
+            return err ? err->code : UMP_ERR_IO;
+        }
+        if (got == 0)
+            break;
+        len += (size_t)got;
+    }
+    /* gzread reports a truncated gzip stream as end of file; gzclose_r
+     * then returns Z_BUF_ERROR. */
+    int zerr = 0;
+    (void)gzerror(gz, &zerr);
+    int rc = gzclose_r(gz);
+    if ((zerr != Z_OK && zerr != Z_STREAM_END) || rc == Z_BUF_ERROR || rc == Z_ERRNO) {
+        free(buf);
+        return UMP_FAIL(err, UMP_ERR_IO, "cannot read %s: %s", path,
+                        rc == Z_BUF_ERROR ? "compressed data cut short" : "read error");
+    }
+    buf[len] = '\0';
+    *out = buf;
+    *outlen = len;
+    return UMP_OK;
+}
