@@ -63,7 +63,7 @@ static void banner(int argc, char **argv, const char *case_dir)
     const char *abs = realpath(case_dir, cwd) ? cwd : case_dir;
     printf("/*---------------------------------------------------------------------------*\\\n"
            "| umppmFoam: Unstructured Moving Particle Pressure Mesh solver                |\n"
-           "| Version:   %-66s|\n"
+           "| Version:   %-65s|\n"
            "| Reads and writes OpenFOAM (v1912) case directories                          |\n"
            "\\*---------------------------------------------------------------------------*/\n",
            UMPPM_VERSION);

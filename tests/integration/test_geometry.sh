@@ -70,7 +70,7 @@ for spec in $cases; do
     rc=0
     "$GEOMCHECK" "$dir" 0 >"$dir/log.geomcheck" 2>&1 || rc=$?
     if [ "$rc" -eq 0 ]; then
-        printf 'PASS  %-22s %s\n' "$label" "$(checkmesh_cell_types "$dir")"
+        printf 'PASS  %-22s %s\n      %s\n' "$label" "$(checkmesh_cell_types "$dir")" "$(tail -n 1 "$dir/log.geomcheck")"
         npass=$((npass + 1))
         [ "${KEEP:-0}" = 1 ] || rm -rf "$dir" "$work/$label.setup.err"
     else
