@@ -2,8 +2,8 @@
 #   make            release build: build/release/umppmFoam (+ ./bin/umppmFoam link)
 #   make run        install Debian packages if missing, build, run tutorials/cavity
 #   make check      the whole test suite (-Werror build, unit + OpenFOAM
-#                   integration tests, then the unit tests under ASan/UBSan)
-#   make asan       unit tests under AddressSanitizer + UBSan (clang)
+#                   integration tests, then all of them again under ASan/UBSan)
+#   make asan       unit and integration tests under AddressSanitizer + UBSan (clang)
 #   make debug      -O0 -g -DUMP_DEBUG build in build/debug
 #   make fuzz       libFuzzer harness for the FoamFile reader (clang)
 #   make deps       install the Debian packages (apt-get, needs root or sudo)
@@ -74,7 +74,7 @@ check: deps
 
 asan:
 	$(MAKE) BUILD=build/asan CC=clang WERROR=-Werror OPT="-O1 -g -fno-omit-frame-pointer" \
-	    SAN="-fsanitize=address,undefined -fno-sanitize-recover=all" unit
+	    SAN="-fsanitize=address,undefined -fno-sanitize-recover=all" unit integration
 
 debug:
 	$(MAKE) BUILD=build/debug OPT="-O0 -g -DUMP_DEBUG" all
