@@ -1,0 +1,39 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * laplacian.h -- particle Laplacians on scattered points (module prefix lap_).
+ *
+ * Every model gives the implicit row of particle i as coefficients a_j over
+ * its neighbours:  lap(phi)_i = sum_j a_j (phi_j - phi_i),
+ * so the explicit value and the implicit matrix row (diagonal -sum_j a_j)
+ * come from the same numbers.
+ *   LAP_CPM  consistent particle method, Eqs. (16)-(17) of seed 000: 5x5
+ *            weighted least squares with p_j = [h, k, h^2/2, hk, k^2/2],
+ *            w_j = 1/r^3; a_j = w_j^2 (row 3 + row 5 of M^{-1}) . p_j.
+ *            Exact for quadratic fields on any non-degenerate cloud.
+ *   LAP_MPS  Koshizuka's model, Eq. (15): a_j = 2d w_j / sum_j w_j r_j^2,
+ *            w = r_e/r - 1 for r < r_e (r_e = re_factor * l0).
+ *   LAP_IPS  improved particle smoothing, seed 001 Eq. (20): reserved for
+ *            issue 6 (lap_coeffs returns UMP_ERR_UNSUPPORTED until then).
+ */
+#ifndef UMPPM_LAPLACIAN_H
+#define UMPPM_LAPLACIAN_H
+
+#include "umppm/ump.h"
+
+typedef enum { LAP_CPM, LAP_MPS, LAP_IPS } lap_model;
+
+typedef struct lap_params {
+    lap_model model;
+    double re_factor;   /* MPS: influence radius r_e = re_factor * l0 (default 2.1) */
+} lap_params;
+
+/* Coefficients a [n] for particle i with neighbour offsets h = x_j - x_i,
+ * k = y_j - y_i [n]. l0: local particle spacing (MPS only). Fails with
+ * UMP_ERR_SINGULAR when the CPM matrix is singular (fewer than 5
+ * independent neighbours) -- the caller decides the fallback. */
+ump_status lap_coeffs(const lap_params *p, const double *h, const double *k, int n, double l0,
+                      double *a, ump_err *err);
+/* Name of the model ("CPM", ...) and parse (-1 if unknown). */
+const char *lap_name(lap_model m);
+int lap_parse(const char *word);
+
+#endif

@@ -1,0 +1,89 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * lsolve.h -- sparse linear algebra (module prefix lsolve_): the only code
+ * that calls SuiteSparse (UMFPACK, KLU, CHOLMOD).
+ *
+ * Matrices are assembled as triplets (duplicates summed) and stored in
+ * compressed-column form, as SuiteSparse wants them. A direct solver object
+ * is analysed and factorized once (lsolve_factor) and then solves any number
+ * of right-hand sides (the PPE of UMPPM: Step 4 of the paper, factor once);
+ * lsolve_refactor reuses the symbolic analysis for new values on the same
+ * pattern. The iterative solver (BiCGSTAB, van der Vorst 1992, with ILU(0)
+ * or Jacobi preconditioning) serves matrices whose pattern changes every
+ * step (the implicit particle predictor) and returns its convergence as data.
+ */
+#ifndef UMPPM_LSOLVE_H
+#define UMPPM_LSOLVE_H
+
+#include <stddef.h>
+#include "umppm/ump.h"
+
+/* Compressed-column matrix (n x n), column j in Ai/Ax[Ap[j] .. Ap[j+1]-1],
+ * row indices sorted, no duplicates. */
+typedef struct lsolve_mat {
+    ump_idx n;
+    ump_idx *Ap;   /* [n+1] */
+    ump_idx *Ai;   /* [nnz] */
+    double *Ax;    /* [nnz] */
+} lsolve_mat;
+
+/* Triplet accumulator: lsolve_trip_add appends (i, j, x); duplicates are
+ * summed by lsolve_trip_to_mat. Grows as needed (amortised O(1)). */
+typedef struct lsolve_trip {
+    ump_idx n;
+    size_t nz, cap;
+    ump_idx *Ti, *Tj;
+    double *Tx;
+} lsolve_trip;
+
+ump_status lsolve_trip_init(lsolve_trip *t, ump_idx n, size_t cap_hint, ump_err *err);
+ump_status lsolve_trip_add(lsolve_trip *t, ump_idx i, ump_idx j, double x, ump_err *err);
+void lsolve_trip_clear(lsolve_trip *t);           /* nz = 0, keeps storage */
+void lsolve_trip_free(lsolve_trip *t);
+/* Build the CSC matrix (caller frees with lsolve_mat_free). */
+ump_status lsolve_trip_to_mat(const lsolve_trip *t, lsolve_mat **A, ump_err *err);
+void lsolve_mat_free(lsolve_mat **A);
+/* y = A x */
+void lsolve_mat_mult(const lsolve_mat *A, const double *x, double *y);
+/* 1 if A equals its transpose to within tol * max|A_ij| */
+int lsolve_mat_is_symmetric(const lsolve_mat *A, double tol);
+
+typedef enum lsolve_kind {
+    LSOLVE_AUTO,     /* CHOLMOD if symmetric (and definite), else UMFPACK */
+    LSOLVE_UMFPACK,
+    LSOLVE_KLU,
+    LSOLVE_CHOLMOD   /* symmetric positive (or negative: sign handled) definite */
+} lsolve_kind;
+
+typedef struct lsolve lsolve; /* opaque factorization */
+
+/* Analyse and factorize A. A singular matrix fails with UMP_ERR_SINGULAR
+ * naming the failing column/row when SuiteSparse reports it. */
+ump_status lsolve_factor(const lsolve_mat *A, lsolve_kind kind, lsolve **out, ump_err *err);
+/* New numerical values, same pattern as the factorized matrix. */
+ump_status lsolve_refactor(lsolve *s, const lsolve_mat *A, ump_err *err);
+/* Solve A x = b (x and b may not alias). */
+ump_status lsolve_solve(lsolve *s, const double *b, double *x, ump_err *err);
+/* Which solver was used ("UMFPACK", "KLU", "CHOLMOD") and factor nnz. */
+const char *lsolve_name(const lsolve *s);
+size_t lsolve_factor_nnz(const lsolve *s);
+void lsolve_free(lsolve **s);
+
+/* ---- iterative ---------------------------------------------------------- */
+typedef enum { LSOLVE_PC_NONE, LSOLVE_PC_JACOBI, LSOLVE_PC_ILU0 } lsolve_pc;
+
+typedef struct lsolve_stats {
+    int iterations;
+    double res0, res;       /* ||b - A x|| / ||b|| before and after */
+    int converged;          /* 1 converged, 0 max iterations, -1 breakdown */
+} lsolve_stats;
+
+/* Workspace for BiCGSTAB on n unknowns (allocated once, reused each step). */
+typedef struct lsolve_krylov lsolve_krylov;
+ump_status lsolve_krylov_create(ump_idx n, lsolve_krylov **out, ump_err *err);
+void lsolve_krylov_free(lsolve_krylov **k);
+/* Solve A x = b from the initial guess in x (warm start) to relative
+ * residual tol or maxit iterations. A may have a new pattern each call. */
+ump_status lsolve_bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, const double *b,
+                           double *x, double tol, int maxit, lsolve_stats *st, ump_err *err);
+
+#endif

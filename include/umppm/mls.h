@@ -1,0 +1,45 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * mls.h -- moving-least-squares interpolation from scattered samples
+ * (module prefix mls_), Eqs. (27)-(35) of seed 000.
+ *
+ * Quadratic basis R = [1 x y xy x^2 y^2] (Eq. 28) in local coordinates
+ * centred at the target point (a face centre, a centroid or a particle);
+ * A = sum_j w_j R_j R_j^T (Eq. 30), B = sum_j w_j u_j R_j (Eq. 31);
+ * value = m1, d/dx = m2, d/dy = m3 of A^{-1}B (Eqs. 32-34). The fit is linear
+ * in the sample values, so mls_weights returns per-sample coefficients
+ * (c0, cx, cy) that the caller applies to every component (u, v, T).
+ * Weight (Eq. 35): w = 1/sqrt((dx/x_m)^2 + (dy/y_m)^2) - 1 with
+ * x_m = max|dx_j| + mean_dx, y_m = max|dy_j| + mean_dy (mean cell extents
+ * supplied by the caller). Documented departures, needed for robustness:
+ *   - w is clamped to [w_min, w_max]: Eq. 35 goes negative for samples in
+ *     the corners of the x_m-by-y_m box and is infinite for a sample on the
+ *     target;
+ *   - with fewer than MLS_MIN_QUAD samples, or when A is ill-conditioned,
+ *     the linear basis [1 x y] is used; with fewer than 3 samples or a
+ *     degenerate linear fit, the weighted mean (Shepard, Eq. 27) is used.
+ *     mls_info says which basis was used, so the caller can log it once.
+ * The scale of coordinates is normalised internally (x/x_m, y/y_m) so the
+ * conditioning does not depend on the mesh size.
+ */
+#ifndef UMPPM_MLS_H
+#define UMPPM_MLS_H
+
+#define MLS_MIN_QUAD 8     /* samples needed for the quadratic basis */
+#define MLS_MAX_SAMPLES 4096
+
+typedef enum { MLS_QUADRATIC = 6, MLS_LINEAR = 3, MLS_SHEPARD = 1, MLS_NONE = 0 } mls_basis;
+
+typedef struct mls_info {
+    mls_basis basis;   /* basis actually used */
+    double rcond;      /* reciprocal condition estimate of the normal matrix */
+} mls_info;
+
+/* Coefficients for n samples at offsets (dx[j], dy[j]) from the target
+ * (sample minus target). Outputs c0, cx, cy [n] (cx, cy may be NULL):
+ *   value ~ sum_j c0[j] u_j,  du/dx ~ sum_j cx[j] u_j,  du/dy ~ sum_j cy[j] u_j.
+ * mean_dx, mean_dy > 0: the Delta-bar of Eq. 35. Returns the basis used
+ * (MLS_NONE only when n == 0). No allocation: n <= MLS_MAX_SAMPLES. */
+mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx, double mean_dy,
+                      double *c0, double *cx, double *cy, mls_info *info);
+
+#endif

@@ -1,0 +1,122 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * particles.h -- fluid and boundary particles on the pressure mesh (module
+ * prefix part_), METHOD.md section 4 and Section 3.2.2.2 of seed 000.
+ *
+ * Struct-of-arrays storage with one grow function. Each fluid particle knows
+ * its cell; after every move the particle is re-located by walking from its
+ * previous cell across the face it leaves through (a global search over
+ * cells is the fall-back), and the set is re-binned per cell (counting sort,
+ * O(N)). Neighbour search = the particles of {P} and N2(P) of the particle's
+ * cell P (mesh2d stencils) plus the boundary particles of those cells: no
+ * all-pairs loop anywhere. Across cyclic faces a particle's position wraps
+ * by the face separation, and neighbours carry the stencil shift.
+ *
+ * Boundary particles sit at the centres of the boundary faces (Step 2) and
+ * never move; their values are the boundary data.
+ */
+#ifndef UMPPM_PARTICLES_H
+#define UMPPM_PARTICLES_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "umppm/mesh2d.h"
+
+typedef struct part_set {
+    size_t n, cap;
+    double *x, *y;     /* position, in-plane coordinates of mesh2d */
+    double *u, *v;     /* velocity */
+    double *T;         /* temperature (always allocated; unused if isothermal) */
+    ump_idx *cell;     /* containing cell */
+    int64_t *id;       /* persistent id (origId in the lagrangian cloud) */
+    int64_t next_id;
+} part_set;
+
+ump_status part_create(size_t cap, part_set **out, ump_err *err);
+void part_free(part_set **s);
+/* Make room for at least cap particles (amortised doubling). */
+ump_status part_reserve(part_set *s, size_t cap, ump_err *err);
+/* Append one particle; returns its index in *idx. */
+ump_status part_add(part_set *s, double x, double y, double u, double v, double T, ump_idx cell,
+                    size_t *idx, ump_err *err);
+/* Remove particles with keep[i] == 0 (order of the rest preserved). */
+void part_compact(part_set *s, const unsigned char *keep);
+/* One particle at every cell centroid (Step 2), values from cell arrays
+ * u, v, T [ncells] (T may be NULL). */
+ump_status part_seed_centroids(part_set *s, const mesh2d *m, const double *u, const double *v,
+                               const double *T, ump_err *err);
+
+/* Result of moving a particle. */
+typedef enum {
+    PART_INSIDE = 0,   /* found; cell updated (position wrapped across cyclics) */
+    PART_LEFT = 1,     /* crossed a boundary face (*face set): to be removed */
+    PART_LOST = 2      /* not found anywhere (should not happen) */
+} part_where;
+
+/* Locate point (*x, *y) starting from cell `start`: walk cell to cell across
+ * the faces the point lies beyond; crossing a cyclic face wraps *x, *y by
+ * the separation; crossing a boundary face returns PART_LEFT with that face.
+ * Falls back to a search over all cells if the walk exceeds its budget. */
+part_where part_locate(const mesh2d *m, ump_idx start, double *x, double *y, ump_idx *cell,
+                       ump_idx *face);
+/* Is (x, y) inside cell c (polygon test, boundary inclusive)? */
+int part_in_cell(const mesh2d *m, ump_idx c, double x, double y);
+
+/* Particles binned per cell: particles of cell c are idx[off[c] .. off[c+1]-1]. */
+typedef struct part_bins {
+    ump_idx ncells;
+    ump_idx *off;      /* [ncells+1] */
+    size_t *idx;       /* [cap] */
+    size_t cap;
+} part_bins;
+
+ump_status part_bins_build(part_bins *b, const mesh2d *m, const part_set *s, ump_err *err);
+void part_bins_free(part_bins *b);
+
+/* Boundary particles: one per boundary face (faces ninternal..nfaces-1). */
+typedef struct part_boundary {
+    ump_idx n;          /* = m->nfaces - m->ninternal */
+    double *x, *y;      /* face centres */
+    double *u, *v, *T;  /* boundary values, set by the solver each step */
+    ump_idx *face;      /* 2-D face index */
+    ump_idx *off, *idx; /* per cell (owner) CSR of boundary particles [ncells+1] */
+} part_boundary;
+
+ump_status part_boundary_create(part_boundary *b, const mesh2d *m, ump_err *err);
+void part_boundary_free(part_boundary *b);
+
+/* A neighbour of a point: fluid particle (is_boundary 0, index into the
+ * part_set) or boundary particle (is_boundary 1, index into part_boundary),
+ * with its offset from the point (shift across cyclics applied). */
+typedef struct part_nbr {
+    size_t index;
+    int is_boundary;
+    double dx, dy;
+} part_nbr;
+
+/* Neighbours of point (x, y) in cell c: fluid and boundary particles of
+ * {c} and N2(c). Writes at most max entries into out (the count is returned;
+ * a return > max means out was too small). `exclude` is a fluid particle
+ * index to leave out (the point itself) or SIZE_MAX. */
+size_t part_neighbours(const mesh2d *m, const part_set *s, const part_bins *b,
+                       const part_boundary *bp, ump_idx c, double x, double y, size_t exclude,
+                       part_nbr *out, size_t max);
+
+/* Particle management (Section 3.2.2.2). */
+typedef enum { PART_UMPPM, PART_UMPPM_STAR } part_variant;
+
+typedef struct part_manage_stats {
+    size_t deleted_close;   /* UMPPM: pairs closer than sqrt(alpha) d_c */
+    size_t deleted_extra;   /* UMPPM*: all but the one nearest the centroid */
+    size_t added;           /* empty cells refilled at the centroid */
+} part_manage_stats;
+
+/* UMPPM: delete one of any two particles in the same cell or in N1
+ * neighbouring cells closer than sqrt(alpha)*d_c (d_c of the cell of the
+ * particle kept); UMPPM*: keep only the particle nearest each centroid.
+ * Then add a particle at the centroid of every empty cell with velocity
+ * (uc, vc) and temperature Tc [ncells] (Eq. 36). Rebuilds the bins. */
+ump_status part_manage(part_set *s, part_bins *b, const mesh2d *m, part_variant variant, double alpha,
+                       const double *uc, const double *vc, const double *Tc, part_manage_stats *st,
+                       ump_err *err);
+
+#endif

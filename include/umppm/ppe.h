@@ -1,0 +1,62 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * ppe.h -- the pressure Poisson equation on the fixed pressure mesh
+ * (module prefix ppe_), Eqs. (20), (22)-(26) of seed 000.
+ *
+ * Kinematic pressure p (as icoFoam): sum_f grad p_f . A_f = (1/dt) sum_f u*_f . A_f.
+ * Interior (and cyclic) face f between A (owner) and B (neighbour, at x_B - sep):
+ *   grad p_f . A_f = [p_B - p_A + grad p_B . BB' - grad p_A . AA'] / |A'B'| * |A_f|
+ * with A', B' the feet of the perpendiculars from A, B onto the line through
+ * x_f along n_f, and grad p_A, grad p_B the LS gradients of lsq.h expanded in
+ * their stencils (so the matrix reaches second neighbours, Fig. 4).
+ * Boundary faces:
+ *   - velocity prescribed (walls, inlets, noSlip, fixedValue U, symmetry):
+ *     Neumann, no gradient term (the flux comes from the prescribed u_f);
+ *   - pressure prescribed (p fixedValue, e.g. outlets): Dirichlet,
+ *     grad p_f . A_f = (p_f - p_A') / |A'f| * |A_f|, A' the foot from A;
+ *     p_f goes to the right-hand side.
+ * With no Dirichlet face the problem is singular up to a constant: the row
+ * of the reference cell (fvSolution pRefCell) is replaced by p = pRefValue,
+ * as OpenFOAM's setReference does in effect.
+ * The matrix depends only on the mesh and the set of Dirichlet faces: it is
+ * assembled and factorized ONCE (ppe_create); each time step is one solve.
+ */
+#ifndef UMPPM_PPE_H
+#define UMPPM_PPE_H
+
+#include "umppm/lsolve.h"
+#include "umppm/lsq.h"
+#include "umppm/mesh2d.h"
+
+typedef struct ppe_opts {
+    lsolve_kind solver;   /* default LSOLVE_AUTO */
+    ump_idx ref_cell;     /* used only if no face is Dirichlet */
+    double ref_value;
+} ppe_opts;
+
+typedef struct ppe {
+    const mesh2d *m;          /* borrowed */
+    const lsq_grad *g;        /* borrowed */
+    unsigned char *dirichlet; /* [nfaces] 1 for pressure-prescribed boundary faces */
+    int has_dirichlet;
+    ump_idx ref_cell;
+    double ref_value;
+    lsolve_mat *A;            /* assembled matrix (rows: cells) */
+    lsolve *fac;              /* its factorization */
+    double *bd_coef;          /* [nfaces] coefficient of p_f on Dirichlet faces */
+    double *rhs;              /* [ncells] workspace */
+} ppe;
+
+/* dirichlet [m->nfaces] (may be NULL: none) marks faces with prescribed p. */
+ump_status ppe_create(const mesh2d *m, const lsq_grad *g, const unsigned char *dirichlet,
+                      const ppe_opts *o, ppe **out, ump_err *err);
+void ppe_free(ppe **P);
+/* Solve for p [ncells] given face fluxes phi_f = u*_f . n_f |f| [nfaces]
+ * (per unit thickness), dt, and the prescribed face pressures pf [nfaces]
+ * (read on Dirichlet faces only; may be NULL when there are none). */
+ump_status ppe_solve(ppe *P, const double *flux, double dt, const double *pf, double *p, ump_err *err);
+/* Face pressure-gradient flux grad p_f . A_f (per unit thickness) [nfaces]
+ * from p, with the same discretisation as the matrix (Eq. 25): the
+ * correction u_f = u*_f - dt grad p_f makes sum_f u_f . A_f = 0 per cell. */
+void ppe_face_gradient_flux(const ppe *P, const double *p, const double *pf, double *gflux);
+
+#endif
