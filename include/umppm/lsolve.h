@@ -42,6 +42,13 @@ void lsolve_trip_free(lsolve_trip *t);
 /* Build the CSC matrix (caller frees with lsolve_mat_free). */
 ump_status lsolve_trip_to_mat(const lsolve_trip *t, lsolve_mat **A, ump_err *err);
 void lsolve_mat_free(lsolve_mat **A);
+/* Fill A (storage reused; it grows only when needed, *cap holding the
+ * capacity in entries -- start with a zeroed lsolve_mat and *cap = 0) with
+ * the n x n matrix given by rows: rowptr [n+1], col/val [rowptr[n]]. Column
+ * indices within a row may be in any order; no duplicates. For matrices
+ * rebuilt every step (the particle predictor) without per-step allocation. */
+ump_status lsolve_mat_from_csr(lsolve_mat *A, size_t *cap, ump_idx n, const ump_idx *rowptr,
+                               const ump_idx *col, const double *val, ump_err *err);
 /* y = A x */
 void lsolve_mat_mult(const lsolve_mat *A, const double *x, double *y);
 /* 1 if A equals its transpose to within tol * max|A_ij| */

@@ -1,0 +1,94 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * solver.h -- the UMPPM time step (module prefix sol_): Steps 5-12 of
+ * Section 3.3 of seed 000 (Ng, Sheu & Hwang 2016), METHOD.md section 6.
+ *
+ * Units are OpenFOAM's incompressible ones: kinematic pressure p = P/rho and
+ * kinematic viscosity nu, so the results compare directly with icoFoam.
+ * The solver never touches files: the application hands it the mesh, the
+ * settings, and the initial/boundary data as fld_field structs, and reads
+ * back cell fields and particles to write them.
+ *
+ * One step, given dt:
+ *   6  implicit predictor on the particles (Eq. 14) with the chosen particle
+ *      Laplacian (CPM by default, Eqs. 16-17); boundary particles are
+ *      Dirichlet data;
+ *   7  intermediate positions r* = r^n + dt u* (Eq. 9), re-located, re-binned;
+ *   8  MLS u* at face centres and centroids (Eqs. 28-35, Eq. 32);
+ *   9  PPE on the fixed mesh (Eqs. 20, 22-26), factorized once, one solve;
+ *   10 u^{n+1} = u* - dt grad p (Eq. 10, MLS gradient Eqs. 33-34),
+ *      r^{n+1} = r^n + dt u^{n+1} (Eq. 7); mesh velocity Eq. 36;
+ *   11 particle management (UMPPM or UMPPM*), removal of particles that
+ *      left through outlets or crossed walls.
+ */
+#ifndef UMPPM_SOLVER_H
+#define UMPPM_SOLVER_H
+
+#include "umppm/field.h"
+#include "umppm/laplacian.h"
+#include "umppm/lsolve.h"
+#include "umppm/mesh2d.h"
+#include "umppm/particles.h"
+
+typedef struct sol_settings {
+    double nu;               /* kinematic viscosity */
+    part_variant variant;    /* UMPPM (adaptive) or UMPPM* (default) */
+    double alpha;            /* UMPPM deletion: sqrt(alpha) d_c (default 0.09) */
+    lap_params lap;          /* particle Laplacian (default CPM) */
+    lsolve_kind ppe_solver;  /* default LSOLVE_AUTO */
+    lsolve_pc pred_pc;       /* predictor preconditioner (default ILU0) */
+    double pred_tol;         /* predictor relative tolerance (default 1e-12) */
+    int pred_maxit;          /* default 500 */
+    ump_idx p_ref_cell;      /* pRefCell, used without pressure boundaries */
+    double p_ref_value;
+} sol_settings;
+
+void sol_default_settings(sol_settings *s);
+
+typedef struct sol_stats {
+    double co_mean, co_max;      /* Courant number of the new mesh velocity */
+    size_t np;                   /* fluid particles after the step */
+    size_t added, deleted, left; /* management and boundary removals */
+    lsolve_stats pred[2];        /* predictor solves (u, v) */
+    int lap_fallbacks;           /* particles whose CPM matrix was singular */
+    int mls_fallbacks;           /* MLS fits that fell back to linear/Shepard */
+    double cont_local, cont_global, cont_max; /* continuity after correction:
+                                    dt-weighted as icoFoam's continuityErrs,
+                                    and the max |sum_f flux| / area */
+} sol_stats;
+
+typedef struct sol sol; /* opaque */
+
+/* Build the solver: LS gradient and PPE (assembled and factorized once),
+ * boundary particles, and one fluid particle per centroid with the cell
+ * values of U. U and p give the boundary conditions (types and values).
+ * mesh, U and p are borrowed for the solver's lifetime. */
+ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U, const fld_field *p,
+                      sol **out, ump_err *err);
+void sol_free(sol **S);
+
+/* Replace the particles (restart from a cloud): positions and velocities of
+ * n particles; cells are located; particles outside the mesh are dropped
+ * (their number is returned in *dropped). */
+ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y, const double *u,
+                             const double *v, const int64_t *id, size_t *dropped, ump_err *err);
+/* Set the cell pressure (restart) before the first step. */
+void sol_set_pressure(sol *S, const double *p);
+
+/* Advance one step of size dt. */
+ump_status sol_step(sol *S, double dt, sol_stats *st, ump_err *err);
+
+/* Courant numbers of the current mesh velocity for a step dt (OpenFOAM's
+ * 0.5 dt sum_f |phi_f| / V, per unit thickness). */
+void sol_courant(const sol *S, double dt, double *mean, double *max);
+
+/* Current fields: cell velocity (Eq. 36) and pressure [ncells], face values
+ * for boundary faces (velocity per 2-D boundary face). Borrowed. */
+const double *sol_cell_u(const sol *S);
+const double *sol_cell_v(const sol *S);
+const double *sol_cell_p(const sol *S);
+/* Boundary-face values for writing: velocity and pressure on 2-D face f
+ * (f >= ninternal). */
+void sol_face_values(const sol *S, ump_idx f, double *u, double *v, double *p);
+const part_set *sol_particles(const sol *S);
+
+#endif
