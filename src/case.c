@@ -313,3 +313,64 @@ ump_status case_start_dir(const char *case_dir, const case_control *c, char *nam
     case_free_times(names, vals, n);
     return rc;
 }
+
+/* Copy a word entry of d into buf after checking it against a list. */
+static ump_status get_choice(const foam_dict *d, const char *key, const char *dflt,
+                             const char *const *valid, int nvalid, char *buf, size_t len, ump_err *err)
+{
+    const char *w = NULL;
+    UMP_CALL(foam_get_word_or(d, key, dflt, &w, err));
+    for (int i = 0; i < nvalid; i++)
+        if (strcmp(valid[i], w) == 0) {
+            snprintf(buf, len, "%s", w);
+            return UMP_OK;
+        }
+    const foam_entry *e = foam_dict_find(d, key, 0);
+    char list[256] = "";
+    for (int i = 0; i < nvalid; i++) {
+        strncat(list, i ? " " : "", sizeof list - strlen(list) - 1);
+        strncat(list, valid[i], sizeof list - strlen(list) - 1);
+    }
+    return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM %s '%s' is not one of: %s",
+                    e ? e->file : "system/fvSolution", e ? e->line : 0, key, w, list);
+}
+
+ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err)
+{
+    static const char *const variants[] = {"UMPPM", "UMPPMstar", "UMPPM*"};
+    static const char *const laps[] = {"CPM", "MPS", "IPS"};
+    static const char *const ppes[] = {"auto", "UMFPACK", "KLU", "CHOLMOD"};
+    static const char *const pcs[] = {"ILU0", "Jacobi", "none"};
+    char path[4096], var[16];
+    snprintf(path, sizeof path, "%s/system/fvSolution", case_dir);
+    foam_file *f = NULL;
+    UMP_CALL(foam_file_read(path, &f, err));
+    const foam_dict *d = foam_dict_sub(f->dict, "UMPPM");
+    static const foam_dict empty = {0};
+    if (!d)
+        d = &empty;
+    const foam_dict *pd = foam_dict_sub(d, "predictorSolver");
+    if (!pd)
+        pd = &empty;
+    int64_t maxit = 500;
+    const char *cloud = NULL;
+    ump_status rc;
+    if ((rc = get_choice(d, "variant", "UMPPMstar", variants, 3, var, sizeof var, err)) != UMP_OK ||
+        (rc = foam_get_scalar_or(d, "alpha", 0.09, &u->alpha, err)) != UMP_OK ||
+        (rc = get_choice(d, "laplacian", "CPM", laps, 3, u->laplacian, sizeof u->laplacian, err)) != UMP_OK ||
+        (rc = get_choice(d, "ppeSolver", "auto", ppes, 4, u->ppe_solver, sizeof u->ppe_solver, err)) != UMP_OK ||
+        (rc = get_choice(pd, "preconditioner", "ILU0", pcs, 3, u->pred_pc, sizeof u->pred_pc, err)) != UMP_OK ||
+        (rc = foam_get_scalar_or(pd, "tolerance", 1e-12, &u->pred_tol, err)) != UMP_OK ||
+        (rc = foam_get_label_or(pd, "maxIter", 500, &maxit, err)) != UMP_OK ||
+        (rc = foam_get_word_or(d, "cloudName", "umppmCloud", &cloud, err)) != UMP_OK)
+        goto done;
+    u->variant_star = strcmp(var, "UMPPM") != 0;
+    u->pred_maxit = (long)maxit;
+    snprintf(u->cloud_name, sizeof u->cloud_name, "%s", cloud);
+    if (!(u->alpha > 0 && u->alpha < 1) || !(u->pred_tol > 0) || maxit < 1)
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: UMPPM alpha must be in (0,1), predictorSolver tolerance > 0 "
+                      "and maxIter >= 1", f->path);
+done:
+    foam_file_free(&f);
+    return rc;
+}

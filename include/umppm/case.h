@@ -50,6 +50,24 @@ typedef struct case_solution {
     double p_ref_point[3];       /* pRefPoint, if given instead of pRefCell */
 } case_solution;
 
+/* The UMPPM sub-dictionary of system/fvSolution (all optional):
+ *   UMPPM { variant UMPPMstar; alpha 0.09; laplacian CPM; ppeSolver auto;
+ *           predictorSolver { preconditioner ILU0; tolerance 1e-12; maxIter 500; }
+ *           cloudName umppmCloud; }
+ * variant: UMPPM (adaptive) or UMPPMstar (also written "UMPPM*" in quotes). */
+typedef struct case_umppm {
+    int variant_star;            /* 1: UMPPM*, 0: UMPPM; default 1 */
+    double alpha;                /* default 0.09, in (0, 1) */
+    char laplacian[16];          /* CPM (default), MPS, IPS */
+    char ppe_solver[16];         /* auto (default), UMFPACK, KLU, CHOLMOD */
+    char pred_pc[16];            /* ILU0 (default), Jacobi, none */
+    double pred_tol;             /* default 1e-12 */
+    long pred_maxit;             /* default 500 */
+    char cloud_name[64];         /* default umppmCloud */
+} case_umppm;
+
+ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err);
+
 /* Read <case>/system/controlDict. Missing required keys (deltaT, endTime,
  * startTime unless latestTime/firstTime, writeInterval) are errors naming
  * file and line; unknown enumeration words are errors listing the valid ones. */

@@ -23,6 +23,7 @@
 #ifndef UMPPM_FIELDIO_H
 #define UMPPM_FIELDIO_H
 
+#include <stdint.h>
 #include <stdio.h>
 #include "umppm/ump.h"
 #include "umppm/polymesh.h"
@@ -87,5 +88,21 @@ void fio_write_header(FILE *fp, const char *cls, const char *location,
 /* Two newlines and the trailing divider line, as OpenFOAM ends a file
  * (the caller's last line ends with its own newline). */
 void fio_write_footer(FILE *fp);
+
+/* ---- lagrangian clouds (OPENFOAM_FORMATS.md section 4) ----------------- */
+/* Write the particle cloud under <dir>/lagrangian/<cloud>/ (positions with
+ * the cell of each particle, U, origId, origProcId) and
+ * <dir>/uniform/lagrangian/<cloud>/cloudProperties with "geometry positions;",
+ * the recipe foamToVTK and paraFoam read in v1912. Always ascii (a file's
+ * format is per file in OpenFOAM), writePrecision digits.
+ *   pos, vel [3*n] (3-D), cell [n] (polyMesh cell), id [n]. */
+ump_status fio_write_cloud(const char *dir, const char *location, const char *cloud, size_t n,
+                           const double *pos, const double *vel, const ump_idx *cell,
+                           const int64_t *id, int precision, ump_err *err);
+/* Read a cloud written by fio_write_cloud (or by OpenFOAM as ascii or
+ * binary positions + U): *n particles, *pos, *vel [3*n], *id [n] (origId,
+ * or -1 when absent), all caller-freed. */
+ump_status fio_read_cloud(const char *dir, const char *cloud, size_t *n, double **pos, double **vel,
+                          int64_t **id, ump_err *err);
 
 #endif

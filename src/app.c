@@ -1,0 +1,328 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * app.c -- the umppmFoam time loop, driven like an OpenFOAM solver.
+ *
+ * Reads system/controlDict, system/fvSolution (PISO/PIMPLE pRefCell and the
+ * UMPPM sub-dictionary), constant/transportProperties, the mesh and the
+ * start-time U and p (and, on a restart, the particle cloud of the start
+ * time), then loops: Courant number, deltaT (fixed, or adjustTimeStep with
+ * maxCo as setDeltaT.H), Time = ..., one UMPPM step, log, and at write
+ * times U, p, the cloud and uniform/time into a time directory written under
+ * a temporary name and renamed into place.
+ */
+#include "umppm/app.h"
+#include "umppm/case.h"
+#include "umppm/field.h"
+#include "umppm/foam.h"
+#include "umppm/fieldio.h"
+#include "umppm/mesh2d.h"
+#include "umppm/polymesh.h"
+#include "umppm/runtime.h"
+#include "umppm/solver.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/time.h>
+#include <time.h>
+
+typedef struct app {
+    const char *case_dir;
+    case_control ctl;
+    case_transport tr;
+    case_solution so;
+    case_umppm um;
+    pmesh *pm;
+    mesh2d *m;
+    fld_field *U, *p;
+    sol *S;
+    char **written;          /* purgeWrite bookkeeping */
+    int nwritten;
+} app;
+
+static double wall_seconds(void)
+{
+    struct timeval tv;
+    gettimeofday(&tv, NULL);
+    return (double)tv.tv_sec + 1e-6 * (double)tv.tv_usec;
+}
+
+static void app_free(app *a)
+{
+    sol_free(&a->S);
+    fld_free(&a->U);
+    fld_free(&a->p);
+    mesh_free(&a->m);
+    pmesh_free(&a->pm);
+    for (int i = 0; i < a->nwritten; i++)
+        free(a->written[i]);
+    free(a->written);
+}
+
+static ump_status settings(const app *a, sol_settings *s, ump_err *err)
+{
+    sol_default_settings(s);
+    s->nu = a->tr.nu;
+    s->variant = a->um.variant_star ? PART_UMPPM_STAR : PART_UMPPM;
+    s->alpha = a->um.alpha;
+    s->lap.model = (lap_model)lap_parse(a->um.laplacian);
+    s->ppe_solver = strcmp(a->um.ppe_solver, "UMFPACK") == 0 ? LSOLVE_UMFPACK
+                    : strcmp(a->um.ppe_solver, "KLU") == 0   ? LSOLVE_KLU
+                    : strcmp(a->um.ppe_solver, "CHOLMOD") == 0 ? LSOLVE_CHOLMOD : LSOLVE_AUTO;
+    s->pred_pc = strcmp(a->um.pred_pc, "Jacobi") == 0 ? LSOLVE_PC_JACOBI
+                 : strcmp(a->um.pred_pc, "none") == 0 ? LSOLVE_PC_NONE : LSOLVE_PC_ILU0;
+    s->pred_tol = a->um.pred_tol;
+    s->pred_maxit = (int)a->um.pred_maxit;
+    s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
+    s->p_ref_value = a->so.p_ref_value;
+    if (a->so.has_p_ref_point) {
+        /* the cell containing pRefPoint */
+        double X = a->so.p_ref_point[a->m->ax[0]], Y = a->so.p_ref_point[a->m->ax[1]];
+        ump_idx best = -1;
+        double bd = INFINITY;
+        for (ump_idx c = 0; c < a->m->ncells; c++) {
+            double d = hypot(a->m->cx[c] - X, a->m->cy[c] - Y);
+            if (d < bd) {
+                bd = d;
+                best = c;
+            }
+        }
+        s->p_ref_cell = best;
+    }
+    if ((int)s->lap.model < 0)
+        return UMP_FAIL(err, UMP_ERR_INPUT, "system/fvSolution: unknown laplacian '%s'", a->um.laplacian);
+    return UMP_OK;
+}
+
+/* Copy the solver state into the U and p fields (types and extra keys kept). */
+static void fill_fields(app *a)
+{
+    const mesh2d *m = a->m;
+    const double *uc = sol_cell_u(a->S), *vc = sol_cell_v(a->S), *pc = sol_cell_p(a->S);
+    for (ump_idx c = 0; c < m->ncells; c++) {
+        double *U = a->U->internal + 3 * (size_t)c;
+        U[m->normal] = 0;
+        U[m->ax[0]] = uc[c];
+        U[m->ax[1]] = vc[c];
+        a->p->internal[c] = pc[c];
+    }
+    for (int p = 0; p < a->pm->npatches; p++) {
+        const pmesh_patch *pp = &a->pm->patch[p];
+        for (ump_idx i = 0; i < pp->n; i++) {
+            ump_idx f = m->pmface_to_face[pp->start + i];
+            if (f < 0)
+                continue;
+            double u, v, pv;
+            if (f < m->ninternal) { /* cyclic: neighbour-side values are the adjacent cell's */
+                ump_idx c = a->pm->owner[pp->start + i];
+                u = uc[c];
+                v = vc[c];
+                pv = pc[c];
+            } else {
+                sol_face_values(a->S, f, &u, &v, &pv);
+            }
+            double *Uv = a->U->patch[p].value + 3 * (size_t)i;
+            Uv[m->normal] = 0;
+            Uv[m->ax[0]] = u;
+            Uv[m->ax[1]] = v;
+            a->p->patch[p].value[i] = pv;
+        }
+    }
+}
+
+static ump_status write_time(app *a, const rt_time *t, ump_err *err)
+{
+    fio_timedir td;
+    fio_format fmt = {a->ctl.write_binary, a->ctl.write_precision, a->ctl.write_compression};
+    fill_fields(a);
+    UMP_CALL(fio_timedir_begin(a->case_dir, t->name, &td, err));
+    ump_status rc;
+    const part_set *P = sol_particles(a->S);
+    double *pos = ump_alloc_array(3 * P->n, sizeof *pos), *vel = ump_alloc_array(3 * P->n, sizeof *vel);
+    if (!pos || !vel) {
+        rc = UMP_FAIL(err, UMP_ERR_NOMEM, "writing the cloud: out of memory");
+        goto fail;
+    }
+    for (size_t i = 0; i < P->n; i++) {
+        mesh_to3d(a->m, P->x[i], P->y[i], pos + 3 * i);
+        vel[3 * i + (size_t)a->m->normal] = 0;
+        vel[3 * i + (size_t)a->m->ax[0]] = P->u[i];
+        vel[3 * i + (size_t)a->m->ax[1]] = P->v[i];
+    }
+    if ((rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->U, &fmt, err)) != UMP_OK ||
+        (rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->p, &fmt, err)) != UMP_OK ||
+        (rc = fio_write_cloud(td.tmp_dir, t->name, a->um.cloud_name, P->n, pos, vel, P->cell, P->id,
+                              a->ctl.write_precision, err)) != UMP_OK ||
+        (rc = fio_write_uniform_time(td.tmp_dir, t->name, t->value, t->name, t->index, t->delta_t,
+                                     t->delta_t0, a->ctl.write_precision, a->ctl.time_format_fixed,
+                                     err)) != UMP_OK ||
+        (rc = fio_timedir_commit(&td, err)) != UMP_OK)
+        goto fail;
+    free(pos);
+    free(vel);
+    /* purgeWrite N: keep the last N written time directories */
+    if (a->ctl.purge_write > 0) {
+        char **w = ump_realloc_array(a->written, (size_t)a->nwritten + 1, sizeof *w);
+        if (!w)
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
+        a->written = w;
+        w[a->nwritten++] = ump_strdup(t->name);
+        while (a->nwritten > a->ctl.purge_write) {
+            fio_timedir old;
+            memset(&old, 0, sizeof old);
+            snprintf(old.tmp_dir, sizeof old.tmp_dir, "%.2000s/%.1000s", a->case_dir, w[0]);
+            old.open = 1;
+            fio_timedir_abort(&old); /* removes the directory tree */
+            free(w[0]);
+            memmove(w, w + 1, (size_t)(a->nwritten - 1) * sizeof *w);
+            a->nwritten--;
+        }
+    }
+    return UMP_OK;
+fail:
+    free(pos);
+    free(vel);
+    fio_timedir_abort(&td);
+    return rc;
+}
+
+/* Restart: particles of the start time's cloud replace the seeded ones. */
+static ump_status restart_cloud(app *a, const char *tname, ump_err *err)
+{
+    char dir[4400], path[4600];
+    snprintf(dir, sizeof dir, "%s/%s", a->case_dir, tname);
+    snprintf(path, sizeof path, "%s/lagrangian/%s/positions", dir, a->um.cloud_name);
+    if (!foam_file_exists(path))
+        return UMP_OK;
+    size_t n = 0, dropped = 0;
+    double *pos = NULL, *vel = NULL, *xy = NULL;
+    int64_t *id = NULL;
+    UMP_CALL(fio_read_cloud(dir, a->um.cloud_name, &n, &pos, &vel, &id, err));
+    ump_status rc = UMP_OK;
+    xy = ump_alloc_array(4 * n, sizeof *xy);
+    if (!xy) {
+        rc = UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+    } else {
+        const int *ax = a->m->ax;
+        for (size_t i = 0; i < n; i++) {
+            xy[i] = pos[3 * i + (size_t)ax[0]];
+            xy[n + i] = pos[3 * i + (size_t)ax[1]];
+            xy[2 * n + i] = vel[3 * i + (size_t)ax[0]];
+            xy[3 * n + i] = vel[3 * i + (size_t)ax[1]];
+        }
+        rc = sol_set_particles(a->S, n, xy, xy + n, xy + 2 * n, xy + 3 * n, id, &dropped, err);
+        if (rc == UMP_OK)
+            printf("Restart: %zu particles read from %s/lagrangian/%s (%zu outside the mesh dropped)\n\n",
+                   n - dropped, tname, a->um.cloud_name, dropped);
+    }
+    free(xy);
+    free(pos);
+    free(vel);
+    free(id);
+    return rc;
+}
+
+static int finite_fields(const app *a)
+{
+    const double *u = sol_cell_u(a->S), *v = sol_cell_v(a->S), *p = sol_cell_p(a->S);
+    for (ump_idx c = 0; c < a->m->ncells; c++)
+        if (!isfinite(u[c]) || !isfinite(v[c]) || !isfinite(p[c]))
+            return 0;
+    return 1;
+}
+
+ump_status app_run(const char *case_dir, ump_err *err)
+{
+    app a;
+    memset(&a, 0, sizeof a);
+    a.case_dir = case_dir;
+    ump_status rc;
+    char tname[256], pmdir[4096], path[4400];
+    double t0, wall0 = wall_seconds();
+    clock_t cpu0 = clock();
+    sol_settings s;
+    printf("Create time\n\n");
+    if ((rc = case_read_control(case_dir, &a.ctl, err)) != UMP_OK ||
+        (rc = case_start_dir(case_dir, &a.ctl, tname, sizeof tname, &t0, err)) != UMP_OK)
+        goto done;
+    snprintf(pmdir, sizeof pmdir, "%s/constant/polyMesh", case_dir);
+    printf("Create mesh for time = %s\n\n", tname);
+    if ((rc = pmesh_read(pmdir, &a.pm, err)) != UMP_OK || (rc = mesh_build(a.pm, &a.m, err)) != UMP_OK)
+        goto done;
+    printf("Reading transportProperties\n\n");
+    if ((rc = case_read_transport(case_dir, &a.tr, err)) != UMP_OK ||
+        (rc = case_read_solution(case_dir, &a.so, err)) != UMP_OK ||
+        (rc = case_read_umppm(case_dir, &a.um, err)) != UMP_OK)
+        goto done;
+    printf("Reading field p\n\n");
+    snprintf(path, sizeof path, "%s/%s/p", case_dir, tname);
+    if ((rc = fio_read_field(path, a.pm, 1, &a.p, err)) != UMP_OK)
+        goto done;
+    printf("Reading field U\n\n");
+    snprintf(path, sizeof path, "%s/%s/U", case_dir, tname);
+    if ((rc = fio_read_field(path, a.pm, 3, &a.U, err)) != UMP_OK)
+        goto done;
+    if ((rc = settings(&a, &s, err)) != UMP_OK)
+        goto done;
+    printf("UMPPM: variant %s, alpha %g, laplacian %s, PPE solver %s, predictor BiCGSTAB/%s "
+           "tolerance %g\n\n", a.um.variant_star ? "UMPPM*" : "UMPPM", a.um.alpha, a.um.laplacian,
+           a.um.ppe_solver, a.um.pred_pc, a.um.pred_tol);
+    double tb = wall_seconds();
+    if ((rc = sol_create(a.m, &s, a.U, a.p, &a.S, err)) != UMP_OK ||
+        (rc = restart_cloud(&a, tname, err)) != UMP_OK)
+        goto done;
+    printf("Pressure mesh: %ld cells; PPE matrix assembled and factorized once (%.3g s); "
+           "%zu particles\n\n", (long)a.m->ncells, wall_seconds() - tb, sol_particles(a.S)->n);
+
+    rt_time t;
+    rt_init(&t, &a.ctl, t0, tname);
+    double co_mean, co_max;
+    if (a.ctl.adjust_time_step) {
+        sol_courant(a.S, t.delta_t, &co_mean, &co_max);
+        rt_set_initial_delta_t(&t, co_max);
+    }
+    printf("\nStarting time loop\n\n");
+    while (rt_running(&t)) {
+        sol_courant(a.S, t.delta_t, &co_mean, &co_max);
+        printf("Courant Number mean: %g max: %g\n", co_mean, co_max);
+        if (a.ctl.adjust_time_step) {
+            rt_adjust_delta_t(&t, co_max);
+            printf("deltaT = %g\n", t.delta_t);
+        }
+        rt_advance(&t);
+        if (t.precision_raised)
+            printf("--> umppmFoam Warning: increased the timePrecision to %d to distinguish between "
+                   "timeNames at time %s\n", t.precision, t.name);
+        printf("Time = %s\n\n", t.name);
+        sol_stats st;
+        if ((rc = sol_step(a.S, t.delta_t, &st, err)) != UMP_OK)
+            goto done;
+        printf("Particles: %zu (added %zu, deleted %zu, left the domain %zu)\n", st.np, st.added,
+               st.deleted, st.left);
+        for (int k = 0; k < 2; k++)
+            printf("BiCGSTAB:  Solving for U%c, Initial residual = %g, Final residual = %g, "
+                   "No Iterations %d\n", "xyz"[a.m->ax[k]], st.pred[k].res0, st.pred[k].res,
+                   st.pred[k].iterations);
+        if (st.lap_fallbacks || st.mls_fallbacks)
+            printf("Fallbacks: %d particle Laplacians (MPS), %d MLS fits (linear/Shepard)\n",
+                   st.lap_fallbacks, st.mls_fallbacks);
+        printf("Direct (factorized once):  Solving for p\n");
+        printf("time step continuity errors : sum local = %g, global = %g, max = %g\n", st.cont_local,
+               st.cont_global, st.cont_max);
+        if (!finite_fields(&a)) {
+            rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: the solution diverged at time %s (NaN or inf); "
+                          "reduce deltaT or maxCo", case_dir, t.name);
+            goto done;
+        }
+        if (t.write_time) {
+            if ((rc = write_time(&a, &t, err)) != UMP_OK)
+                goto done;
+        }
+        printf("ExecutionTime = %.4g s  ClockTime = %.0f s\n\n",
+               (double)(clock() - cpu0) / CLOCKS_PER_SEC, wall_seconds() - wall0);
+    }
+    rc = UMP_OK;
+done:
+    app_free(&a);
+    return rc;
+}
