@@ -71,12 +71,13 @@ static int fit(int nb, double mom[5][5], const double *dx, const double *dy, int
     spd_inv_column(&f, 0, q0);
     spd_inv_column(&f, 1, qx);
     spd_inv_column(&f, 2, qy);
+    double ixm = 1 / xm, iym = 1 / ym;
     for (int i = 0; i < nb; i++) { /* back to physical derivatives */
-        qx[i] /= xm;
-        qy[i] /= ym;
+        qx[i] *= ixm;
+        qy[i] *= iym;
     }
     for (int j = 0; j < n; j++) {
-        double X = dx[j] / xm, Y = dy[j] / ym, w = c0[j];
+        double X = dx[j] * ixm, Y = dy[j] * iym, w = c0[j];
         double R[6] = {1, X, Y, X * Y, X * X, Y * Y};
         double s0 = 0, sx = 0, sy = 0;
         for (int i = 0; i < nb; i++) {
@@ -122,9 +123,9 @@ mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx,
 
     /* Pass 1: weights (parked in c0) and moments mom[a][b], a + b <= 4. */
     double mom[5][5] = {{0}};
-    double wsum = 0;
+    double wsum = 0, ixm = 1 / xm, iym = 1 / ym;
     for (int j = 0; j < n; j++) {
-        double X = dx[j] / xm, Y = dy[j] / ym;
+        double X = dx[j] * ixm, Y = dy[j] * iym;
         double w = weight(X, Y);
         double xp[5], yp[5];
         powers(X, Y, xp, yp);
