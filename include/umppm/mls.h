@@ -30,13 +30,13 @@
 
 /* Clamp of the Eq. 35 weight (normalised coordinates, rho = |(dx/x_m, dy/y_m)|):
  *   MLS_W_MAX: reached for rho <= 1/(1 + MLS_W_MAX), i.e. only by a sample
- *     practically on the target; the fit then reproduces that sample to
- *     ~1/MLS_W_MAX relative, as Eq. 35 intends, without dividing by zero.
+ *     practically on the target; the fit then reproduces that sample up to
+ *     O(10/MLS_W_MAX), as Eq. 35 intends, without dividing by zero.
  *     After equilibration such a sample feeds only the constant entry of A,
  *     so the cap costs no conditioning.
  *   MLS_W_MIN: floor for rho >= 1/(1 + MLS_W_MIN) (the corners of the
  *     x_m-by-y_m box, where Eq. 35 is zero or negative: a negative weight
- *     makes A indefinite). Corner samples stay in the fit at ~1% of the
+ *     makes A indefinite). Corner samples stay in the fit at ~2% of the
  *     weight of an edge-of-stencil sample (w ~ 0.5), which keeps A's rank
  *     when they are the only samples in some direction. The clamped weight
  *     is continuous in the sample positions. */
