@@ -21,18 +21,27 @@
 
 typedef enum { LAP_CPM, LAP_MPS, LAP_IPS } lap_model;
 
+#define LAP_RE_FACTOR_DEFAULT 2.1
+/* CPM: UMP_ERR_SINGULAR when the reciprocal 1-norm condition number of the
+ * equilibrated, length-normalised moment matrix is below this. */
+#define LAP_RCOND_MIN 1.0e-12
+
 typedef struct lap_params {
     lap_model model;
-    double re_factor;   /* MPS: influence radius r_e = re_factor * l0 (default 2.1) */
+    double re_factor;   /* MPS: influence radius r_e = re_factor * l0; 0 means
+                           LAP_RE_FACTOR_DEFAULT (2.1), < 0 is UMP_ERR_INPUT */
 } lap_params;
 
 /* Coefficients a [n] for particle i with neighbour offsets h = x_j - x_i,
- * k = y_j - y_i [n]. l0: local particle spacing (MPS only). Fails with
+ * k = y_j - y_i [n]. l0: local particle spacing (MPS only; > 0). Fails with
  * UMP_ERR_SINGULAR when the CPM matrix is singular (fewer than 5
- * independent neighbours) -- the caller decides the fallback. */
+ * independent neighbours) or, for MPS, when no neighbour lies within r_e --
+ * the caller decides the fallback. A neighbour at the position of i (CPM:
+ * closer than 1e-12 of the stencil radius) gets a_j = 0. No allocation. */
 ump_status lap_coeffs(const lap_params *p, const double *h, const double *k, int n, double l0,
                       double *a, ump_err *err);
-/* Name of the model ("CPM", ...) and parse (-1 if unknown). */
+/* Name of the model ("CPM", "MPS", "IPS"; "unknown" otherwise) and parse
+ * (exact, case-sensitive word; -1 if unknown). */
 const char *lap_name(lap_model m);
 int lap_parse(const char *word);
 

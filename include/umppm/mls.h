@@ -25,20 +25,43 @@
 #define UMPPM_MLS_H
 
 #define MLS_MIN_QUAD 8     /* samples needed for the quadratic basis */
-#define MLS_MAX_SAMPLES 4096
+#define MLS_MAX_SAMPLES 4096 /* sizing hint for callers' buffers; mls_weights
+                                itself keeps no per-sample scratch */
+
+/* Clamp of the Eq. 35 weight (normalised coordinates, rho = |(dx/x_m, dy/y_m)|):
+ *   MLS_W_MAX: reached for rho <= 1/(1 + MLS_W_MAX), i.e. only by a sample
+ *     practically on the target; the fit then reproduces that sample up to
+ *     O(10/MLS_W_MAX), as Eq. 35 intends, without dividing by zero.
+ *     After equilibration such a sample feeds only the constant entry of A,
+ *     so the cap costs no conditioning.
+ *   MLS_W_MIN: floor for rho >= 1/(1 + MLS_W_MIN) (the corners of the
+ *     x_m-by-y_m box, where Eq. 35 is zero or negative: a negative weight
+ *     makes A indefinite). Corner samples stay in the fit at ~2% of the
+ *     weight of an edge-of-stencil sample (w ~ 0.5), which keeps A's rank
+ *     when they are the only samples in some direction. The clamped weight
+ *     is continuous in the sample positions. */
+#define MLS_W_MAX 1.0e6
+#define MLS_W_MIN 1.0e-2
+/* Fall back to the next smaller basis when the reciprocal 1-norm condition
+ * number of the equilibrated normal matrix is below this. */
+#define MLS_RCOND_MIN 1.0e-10
 
 typedef enum { MLS_QUADRATIC = 6, MLS_LINEAR = 3, MLS_SHEPARD = 1, MLS_NONE = 0 } mls_basis;
 
 typedef struct mls_info {
     mls_basis basis;   /* basis actually used */
-    double rcond;      /* reciprocal condition estimate of the normal matrix */
+    double rcond;      /* reciprocal 1-norm condition number of the equilibrated
+                          normal matrix of that basis, in normalised
+                          coordinates (1 for Shepard, 0 for none) */
 } mls_info;
 
 /* Coefficients for n samples at offsets (dx[j], dy[j]) from the target
  * (sample minus target). Outputs c0, cx, cy [n] (cx, cy may be NULL):
  *   value ~ sum_j c0[j] u_j,  du/dx ~ sum_j cx[j] u_j,  du/dy ~ sum_j cy[j] u_j.
  * mean_dx, mean_dy > 0: the Delta-bar of Eq. 35. Returns the basis used
- * (MLS_NONE only when n == 0). No allocation: n <= MLS_MAX_SAMPLES. */
+ * (MLS_NONE only when n <= 0; outputs then untouched). With MLS_SHEPARD,
+ * cx and cy are set to 0 (no derivative information). info may be NULL.
+ * No allocation; any n works (see MLS_MAX_SAMPLES). */
 mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx, double mean_dy,
                       double *c0, double *cx, double *cy, mls_info *info);
 
