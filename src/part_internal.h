@@ -8,9 +8,10 @@
 #include "umppm/particles.h"
 
 /* The walk of part_locate without its fall-backs: PART_INSIDE / PART_LEFT as
- * part_locate, PART_LOST when more than `budget` faces would be crossed or a
- * cycle is detected (the caller then searches globally). *nsteps (may be
- * NULL) = faces crossed. */
+ * part_locate, PART_LOST when more than `budget` faces would be crossed, a
+ * cycle is detected, or the point is beyond walls only by more than d_c
+ * (the caller then searches globally). *nsteps (may be NULL) = faces
+ * crossed. */
 part_where part_walk(const mesh2d *m, ump_idx start, double *x, double *y, ump_idx *cell,
                      ump_idx *face, long budget, long *nsteps);
 
