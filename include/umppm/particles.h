@@ -62,8 +62,11 @@ typedef enum {
  * cycles (or start is not a cell).
  *   PART_INSIDE: *cell = containing cell, *face = -1, *x, *y wrapped.
  *   PART_LEFT:   *face = boundary face crossed, *cell = its owner, *x, *y
- *                as walked (not moved back into the domain). If the global
- *                search finds no cell, the nearest boundary face is reported.
+ *                as walked (not moved back into the domain). Returned when
+ *                the point is beyond boundary faces only, by at most d_c,
+ *                and in no cell of N2 (round a domain corner); farther
+ *                beyond, the global search decides and, if it finds no
+ *                cell, the nearest boundary face is reported.
  *   PART_LOST:   non-finite point, or no cell and no boundary face (fully
  *                periodic mesh, point outside the periodic box); *cell =
  *                *face = -1.
@@ -128,7 +131,8 @@ size_t part_neighbours(const mesh2d *m, const part_set *s, const part_bins *b,
 typedef enum { PART_UMPPM, PART_UMPPM_STAR } part_variant;
 
 typedef struct part_manage_stats {
-    size_t deleted_close;   /* UMPPM: pairs closer than sqrt(alpha) d_c */
+    size_t deleted_close;   /* UMPPM: particles deleted, each closer than
+                               sqrt(alpha) d_c to a kept one */
     size_t deleted_extra;   /* UMPPM*: all but the one nearest the centroid */
     size_t added;           /* empty cells refilled at the centroid */
     size_t removed_left;    /* particles with cell < 0 (left the domain) removed */
@@ -143,7 +147,8 @@ typedef struct part_manage_stats {
  * is kept: the one nearer its own cell centroid (greedy, in increasing
  * distance to the own centroid, ties by lower index), so every surviving
  * pair is at least sqrt(alpha)*d_c apart, d_c of the cell of the member
- * nearer its centroid. UMPPM* ties: lower index kept. Survivors keep their
+ * nearer its centroid (refilled centroid particles, added after the
+ * deletion as in the paper, may be closer). UMPPM* ties: lower index kept. Survivors keep their
  * order and ids; new particles are appended. Bins are built on entry (need
  * not be current) and rebuilt on exit. alpha is used by UMPPM only (> 0). */
 ump_status part_manage(part_set *s, part_bins *b, const mesh2d *m, part_variant variant, double alpha,

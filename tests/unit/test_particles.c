@@ -513,6 +513,17 @@ static void test_locate_periodic(void **state)
     TU_CLOSE(y, 0.1 * h, 1e-14);
     tmesh_free(&t);
 
+    /* one cell across the period: owner == neighbour on both cyclic faces */
+    t = build_grid(1, 0.0, kind_quad, 1);
+    m = t.m;
+    x = 1.25;
+    y = -0.5;
+    assert_int_equal(part_locate(m, 0, &x, &y, &cell, &face), PART_INSIDE);
+    assert_int_equal(cell, 0);
+    TU_CLOSE(x, 0.25, 1e-15);
+    TU_CLOSE(y, 0.5, 1e-15);
+    tmesh_free(&t);
+
     /* random small moves on periodic triangle and hybrid meshes */
     int (*kinds[])(int, int, int) = {kind_tri4, kind_hybrid};
     for (int kk = 0; kk < 2; kk++) {
