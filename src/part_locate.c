@@ -34,7 +34,9 @@
  * the point is beyond that face alone and outside the cell by the polygon
  * test (possible only in non-convex cells), so an edge or vertex point
  * cannot ping-pong; any longer cycle is caught by Brent's cycle detection
- * on the walk state, and a step budget (ncells + 16) bounds everything else.
+ * on the walk state and gone round once more with polygon tests (a
+ * non-convex cell can hold the point while the point is beyond one of its
+ * face lines), and a step budget (ncells + 16) bounds everything else.
  * On failure: point-in-polygon over all cells (O(ncells), bounding boxes
  * first), then -- the point being outside every cell -- the nearest
  * boundary face (PART_LEFT).
@@ -112,105 +114,138 @@ static int in_stencil(const mesh2d *m, ump_idx *c, double *x, double *y)
     return 0;
 }
 
+/* State of the walk: current cell, face entered through (-1 at the start)
+ * and its side as seen from c, and the point (wrapped across cyclics). */
+typedef struct walk_state {
+    ump_idx c, ef;
+    int es;
+    double x, y;
+} walk_state;
+
+enum { W_MOVED, W_INSIDE, W_LEFT, W_FAR, W_BUDGET };
+
+/* One step of the walk: decide in w->c, or cross one face (if may_move). */
+static int walk_step(const mesh2d *m, walk_state *w, ump_idx *face, int may_move)
+{
+    ump_idx c = w->c;
+    double eps = part_eps(m, c, w->x, w->y);
+    ump_idx bi = -1, bb = -1; /* best internal / boundary face */
+    int si = 0, back = 0;
+    double di = eps, db = eps;
+    for (ump_idx k = m->cell_face_off[c]; k < m->cell_face_off[c + 1]; k++) {
+        ump_idx f = m->cell_faces[k];
+        int side = nb_side(m, c, k);
+        double d = beyond(m, f, side, w->x, w->y);
+        if (!(d > eps))
+            continue;
+        if (f == w->ef && side == w->es) {
+            back = 1;
+            continue;
+        }
+        if (f < m->ninternal) {
+            if (d > di) {
+                di = d;
+                bi = f;
+                si = side;
+            }
+        } else if (d > db) {
+            db = d;
+            bb = f;
+        }
+    }
+    if (bi < 0) {
+        if (bb >= 0) {
+            /* beyond walls only. Within d_c: left, unless the point is in a
+             * cell of the stencil (round a corner of the domain, cyclic
+             * images included). Farther, the point may be in the domain
+             * behind an obstacle: global search. */
+            if (db > m->dc[c])
+                return W_FAR;
+            if (in_stencil(m, &w->c, &w->x, &w->y))
+                return W_INSIDE;
+            *face = bb;
+            return W_LEFT;
+        }
+        if (!back || part_in_cell(m, c, w->x, w->y))
+            return W_INSIDE;
+        /* non-convex cell: beyond the entry face only and outside */
+        bi = w->ef;
+        si = w->es;
+        back = 2;
+    }
+    if (!may_move)
+        return W_BUDGET;
+    if (si == 0) {
+        w->c = m->neigh[bi];
+        if (m->sepx) {
+            w->x += m->sepx[bi];
+            w->y += m->sepy[bi];
+        }
+    } else {
+        w->c = m->owner[bi];
+        if (m->sepx) {
+            w->x -= m->sepx[bi];
+            w->y -= m->sepy[bi];
+        }
+    }
+    w->ef = bi;
+    w->es = !si;
+    /* stepped back into a non-convex cell that holds the point although
+     * the point is beyond one of its face lines */
+    if (back == 2 && part_in_cell(m, w->c, w->x, w->y))
+        return W_INSIDE;
+    return W_MOVED;
+}
+
+static int same_state(const walk_state *a, const walk_state *b)
+{
+    return a->c == b->c && a->ef == b->ef && a->es == b->es && a->x == b->x && a->y == b->y;
+}
+
 part_where part_walk(const mesh2d *m, ump_idx start, double *x, double *y, ump_idx *cell,
                      ump_idx *face, long budget, long *nsteps)
 {
-    ump_idx c = start, ef = -1;    /* current cell, face entered through */
-    int es = 0;                    /* side of ef as seen from c */
-    double px = *x, py = *y;
+    walk_state w = {start, -1, 0, *x, *y};
     /* Brent's cycle detection: checkpoint state, refreshed at powers of 2 */
-    ump_idx kc = -1, kf = -1;
-    int ks = 0;
-    double kx = 0, ky = 0;
+    walk_state k = {-1, -1, 0, 0, 0};
     long power = 1, lam = 0, steps = 0;
-    part_where r = PART_LOST;
+    int rc;
     *face = -1;
     for (;;) {
-        double eps = part_eps(m, c, px, py);
-        ump_idx bi = -1, bb = -1; /* best internal / boundary face */
-        int si = 0, back = 0;
-        double di = eps, db = eps;
-        for (ump_idx k = m->cell_face_off[c]; k < m->cell_face_off[c + 1]; k++) {
-            ump_idx f = m->cell_faces[k];
-            int side = nb_side(m, c, k);
-            double d = beyond(m, f, side, px, py);
-            if (!(d > eps))
-                continue;
-            if (f == ef && side == es) {
-                back = 1;
-                continue;
-            }
-            if (f < m->ninternal) {
-                if (d > di) {
-                    di = d;
-                    bi = f;
-                    si = side;
-                }
-            } else if (d > db) {
-                db = d;
-                bb = f;
-            }
-        }
-        if (bi < 0) {
-            if (bb >= 0) {
-                /* beyond walls only. Within d_c: left, unless the point is
-                 * in a cell of the stencil (round a corner of the domain,
-                 * cyclic images included). Farther, the point may be in
-                 * the domain behind an obstacle: global search. */
-                if (db <= m->dc[c]) {
-                    if (in_stencil(m, &c, &px, &py)) {
-                        r = PART_INSIDE;
-                    } else {
-                        *face = bb;
-                        r = PART_LEFT;
-                    }
-                }
-                break;
-            }
-            if (!back || part_in_cell(m, c, px, py)) {
-                r = PART_INSIDE;
-                break;
-            }
-            /* non-convex cell: beyond the entry face only and outside */
-            bi = ef;
-            si = es;
-        }
-        if (steps >= budget)
+        rc = walk_step(m, &w, face, steps < budget);
+        if (rc != W_MOVED)
             break;
-        if (si == 0) {
-            c = m->neigh[bi];
-            if (m->sepx) {
-                px += m->sepx[bi];
-                py += m->sepy[bi];
-            }
-        } else {
-            c = m->owner[bi];
-            if (m->sepx) {
-                px -= m->sepx[bi];
-                py -= m->sepy[bi];
-            }
-        }
-        ef = bi;
-        es = !si;
         steps++;
-        if (c == kc && ef == kf && es == ks && px == kx && py == ky)
-            break; /* the walk is deterministic in its state: a cycle */
-        if (++lam == power) {
-            kc = c;
-            kf = ef;
-            ks = es;
-            kx = px;
-            ky = py;
+        lam++;
+        if (same_state(&w, &k)) {
+            /* the walk is deterministic in its state: a cycle of length
+             * lam. Non-convex cells can make the point leave the cell that
+             * holds it: go round once more with polygon tests. */
+            rc = W_FAR;
+            for (long i = 0; i < lam; i++) {
+                if (part_in_cell(m, w.c, w.x, w.y)) {
+                    rc = W_INSIDE;
+                    break;
+                }
+                if ((rc = walk_step(m, &w, face, 1)) != W_MOVED)
+                    break;
+                rc = W_FAR;
+                steps++;
+            }
+            break;
+        }
+        if (lam == power) {
+            k = w;
             power *= 2;
             lam = 0;
         }
     }
-    *x = px;
-    *y = py;
-    *cell = c;
+    *x = w.x;
+    *y = w.y;
+    *cell = w.c;
     if (nsteps)
         *nsteps = steps;
-    return r;
+    return rc == W_INSIDE ? PART_INSIDE : rc == W_LEFT ? PART_LEFT : PART_LOST;
 }
 
 /* Global fall-back: the cell containing (x, y), or -1. */

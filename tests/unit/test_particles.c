@@ -320,7 +320,9 @@ static void test_set_seed_compact_grow(void **state)
     tmesh_free(&t);
 }
 
-static void run_locate_suite(tmesh *t, const char *name, int npts)
+/* strict: the walk alone must succeed for the neighbour and small-move cases
+ * (convex cells); otherwise only the result (with fall-backs) is checked */
+static void run_locate_suite(tmesh *t, const char *name, int npts, int strict)
 {
     const mesh2d *m = t->m;
     loc_stats rnd = {0, 0, 0, 0}, nbr = {0, 0, 0, 0}, small = {0, 0, 0, 0};
@@ -355,8 +357,10 @@ static void run_locate_suite(tmesh *t, const char *name, int npts)
                   (double)small.steps / (double)small.n, small.walk_fail,
                   rnd.ambiguous + nbr.ambiguous + small.ambiguous);
     /* the walk itself must succeed in the typical cases */
-    assert_int_equal(nbr.walk_fail, 0);
-    assert_int_equal(small.walk_fail, 0);
+    if (strict) {
+        assert_int_equal(nbr.walk_fail, 0);
+        assert_int_equal(small.walk_fail, 0);
+    }
 }
 
 static void test_locate_meshes(void **state)
@@ -366,10 +370,12 @@ static void test_locate_meshes(void **state)
     struct { int n; double jit; int (*kind)(int, int, int); const char *name; } cases[] = {
         {30, 0.0, kind_quad, "quad"},   {30, 0.2, kind_quad, "quad~"}, {20, 0.0, kind_tri4, "tri4"},
         {25, 0.15, kind_tri2, "tri2~"}, {24, 0.2, kind_hybrid, "hybrid~"}, {24, 0.15, kind_hole, "hole~"},
+        /* jitter 0.45: some quads non-convex, a few arrowheads */
+        {20, 0.45, kind_quad, "quad!!"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         tmesh t = build_grid(cases[i].n, cases[i].jit, cases[i].kind, 0);
-        run_locate_suite(&t, cases[i].name, 3000);
+        run_locate_suite(&t, cases[i].name, 3000, cases[i].jit < 0.4);
         tmesh_free(&t);
     }
 }
