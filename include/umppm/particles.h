@@ -35,13 +35,15 @@ ump_status part_create(size_t cap, part_set **out, ump_err *err);
 void part_free(part_set **s);
 /* Make room for at least cap particles (amortised doubling). */
 ump_status part_reserve(part_set *s, size_t cap, ump_err *err);
-/* Append one particle; returns its index in *idx. */
+/* Append one particle with a fresh id (next_id++); returns its index in *idx
+ * (idx may be NULL). */
 ump_status part_add(part_set *s, double x, double y, double u, double v, double T, ump_idx cell,
                     size_t *idx, ump_err *err);
 /* Remove particles with keep[i] == 0 (order of the rest preserved). */
 void part_compact(part_set *s, const unsigned char *keep);
 /* One particle at every cell centroid (Step 2), values from cell arrays
- * u, v, T [ncells] (T may be NULL). */
+ * u, v, T [ncells] (T may be NULL: T = 0). Appends to the set (cell c's
+ * particle gets index n_before + c). */
 ump_status part_seed_centroids(part_set *s, const mesh2d *m, const double *u, const double *v,
                                const double *T, ump_err *err);
 
@@ -54,21 +56,41 @@ typedef enum {
 
 /* Locate point (*x, *y) starting from cell `start`: walk cell to cell across
  * the faces the point lies beyond; crossing a cyclic face wraps *x, *y by
- * the separation; crossing a boundary face returns PART_LEFT with that face.
- * Falls back to a search over all cells if the walk exceeds its budget. */
+ * the separation (owner -> neighbour: += sep, neighbour -> owner: -= sep);
+ * crossing a boundary face returns PART_LEFT with that face.
+ * Falls back to a search over all cells if the walk exceeds its budget or
+ * cycles (or start is not a cell).
+ *   PART_INSIDE: *cell = containing cell, *face = -1, *x, *y wrapped.
+ *   PART_LEFT:   *face = boundary face crossed, *cell = its owner, *x, *y
+ *                as walked (not moved back into the domain). Returned when
+ *                the point is beyond boundary faces only, by at most d_c,
+ *                and in no cell of N2 (round a domain corner); farther
+ *                beyond, the global search decides and, if it finds no
+ *                cell, the nearest boundary face is reported.
+ *   PART_LOST:   non-finite point, or no cell and no boundary face (fully
+ *                periodic mesh, point outside the periodic box); *cell =
+ *                *face = -1.
+ * A point on an edge or vertex (within 1e-10 d_c) belongs to the first cell
+ * of the walk that contains it (boundary-inclusive cells). */
 part_where part_locate(const mesh2d *m, ump_idx start, double *x, double *y, ump_idx *cell,
                        ump_idx *face);
 /* Is (x, y) inside cell c (polygon test, boundary inclusive)? */
 int part_in_cell(const mesh2d *m, ump_idx c, double x, double y);
 
-/* Particles binned per cell: particles of cell c are idx[off[c] .. off[c+1]-1]. */
+/* Particles binned per cell: particles of cell c are idx[off[c] .. off[c+1]-1],
+ * in increasing particle index. Zero-initialise (part_bins b = {0}) before
+ * the first build; later builds reuse the storage (amortised growth).
+ * Particles with cell < 0 (marked as left) are not binned. */
 typedef struct part_bins {
     ump_idx ncells;
     ump_idx *off;      /* [ncells+1] */
     size_t *idx;       /* [cap] */
     size_t cap;
+    void *work;        /* scratch of part_manage (owned here, grown amortised) */
+    size_t work_bytes;
 } part_bins;
 
+/* UMP_ERR_INPUT if a particle's cell is >= ncells (bins then invalid). */
 ump_status part_bins_build(part_bins *b, const mesh2d *m, const part_set *s, ump_err *err);
 void part_bins_free(part_bins *b);
 
@@ -81,6 +103,7 @@ typedef struct part_boundary {
     ump_idx *off, *idx; /* per cell (owner) CSR of boundary particles [ncells+1] */
 } part_boundary;
 
+/* Fills *b (values u, v, T set to 0); part_boundary_free releases it. */
 ump_status part_boundary_create(part_boundary *b, const mesh2d *m, ump_err *err);
 void part_boundary_free(part_boundary *b);
 
@@ -96,7 +119,10 @@ typedef struct part_nbr {
 /* Neighbours of point (x, y) in cell c: fluid and boundary particles of
  * {c} and N2(c). Writes at most max entries into out (the count is returned;
  * a return > max means out was too small). `exclude` is a fluid particle
- * index to leave out (the point itself) or SIZE_MAX. */
+ * index to leave out (the point itself) or SIZE_MAX. Order: cell c, then
+ * N2(c) in stencil order; per cell its fluid particles (bin order), then its
+ * boundary particles. bp may be NULL (fluid particles only). The bins must
+ * be current. */
 size_t part_neighbours(const mesh2d *m, const part_set *s, const part_bins *b,
                        const part_boundary *bp, ump_idx c, double x, double y, size_t exclude,
                        part_nbr *out, size_t max);
@@ -105,16 +131,26 @@ size_t part_neighbours(const mesh2d *m, const part_set *s, const part_bins *b,
 typedef enum { PART_UMPPM, PART_UMPPM_STAR } part_variant;
 
 typedef struct part_manage_stats {
-    size_t deleted_close;   /* UMPPM: pairs closer than sqrt(alpha) d_c */
+    size_t deleted_close;   /* UMPPM: particles deleted, each closer than
+                               sqrt(alpha) d_c to a kept one */
     size_t deleted_extra;   /* UMPPM*: all but the one nearest the centroid */
     size_t added;           /* empty cells refilled at the centroid */
+    size_t removed_left;    /* particles with cell < 0 (left the domain) removed */
 } part_manage_stats;
 
 /* UMPPM: delete one of any two particles in the same cell or in N1
  * neighbouring cells closer than sqrt(alpha)*d_c (d_c of the cell of the
  * particle kept); UMPPM*: keep only the particle nearest each centroid.
  * Then add a particle at the centroid of every empty cell with velocity
- * (uc, vc) and temperature Tc [ncells] (Eq. 36). Rebuilds the bins. */
+ * (uc, vc) and temperature Tc [ncells] (Eq. 36; Tc may be NULL: T = 0).
+ * Particles with cell < 0 are removed first. Which particle of a close pair
+ * is kept: the one nearer its own cell centroid (greedy, in increasing
+ * distance to the own centroid, ties by lower index), so every surviving
+ * pair is at least sqrt(alpha)*d_c apart, d_c of the cell of the member
+ * nearer its centroid (refilled centroid particles, added after the
+ * deletion as in the paper, may be closer). UMPPM* ties: lower index kept. Survivors keep their
+ * order and ids; new particles are appended. Bins are built on entry (need
+ * not be current) and rebuilt on exit. alpha is used by UMPPM only (> 0). */
 ump_status part_manage(part_set *s, part_bins *b, const mesh2d *m, part_variant variant, double alpha,
                        const double *uc, const double *vc, const double *Tc, part_manage_stats *st,
                        ump_err *err);
