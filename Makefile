@@ -34,7 +34,7 @@ UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 all: $(APP)
 	@mkdir -p bin && ln -sf ../$(APP) bin/umppmFoam
 
-$(BUILD)/obj/%.o: src/%.c $(wildcard include/umppm/*.h)
+$(BUILD)/obj/%.o: src/%.c $(wildcard include/umppm/*.h) $(wildcard src/*.h)
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(CFLAGS_ALL) -c $< -o $@
 
@@ -45,7 +45,7 @@ $(LIB): $(LIB_OBJ)
 $(APP): $(BUILD)/obj/main.o $(LIB)
 	$(CC) $(CFLAGS_ALL) -o $@ $^ $(LDLIBS)
 
-$(BUILD)/tests/%: tests/unit/%.c tests/unit/testutil.h $(LIB)
+$(BUILD)/tests/%: tests/unit/%.c tests/unit/testutil.h $(wildcard src/*.h) $(LIB)
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) -Itests/unit $(CFLAGS_ALL) -o $@ $< $(LIB) $(TEST_LDLIBS) $(LDLIBS)
 
