@@ -31,8 +31,15 @@ UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 .PHONY: all run check unit integration asan debug fuzz deps clean
 .SECONDARY:
 
-all: $(APP)
+TOOLS    = $(patsubst tools/%.c,$(BUILD)/tools/%,$(wildcard tools/*.c))
+
+all: $(APP) $(TOOLS)
 	@mkdir -p bin && ln -sf ../$(APP) bin/umppmFoam
+	@for t in $(TOOLS); do ln -sf ../$$t bin/$$(basename $$t); done
+
+$(BUILD)/tools/%: tools/%.c $(LIB)
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(CFLAGS_ALL) -o $@ $< $(LIB) $(LDLIBS)
 
 $(BUILD)/obj/%.o: src/%.c $(wildcard include/umppm/*.h) $(wildcard src/*.h)
 	@mkdir -p $(dir $@)

@@ -73,6 +73,12 @@ void pmesh_free(pmesh **m);
  * Internal faces are in upper-triangular order (by owner, then neighbour);
  * boundary faces of a patch are sorted by midpoint (x, then y), so faces k of
  * two opposite straight patches face each other (usable as cyclic pairs). */
+/* Write m as an ascii OpenFOAM polyMesh into dir (points, faces, owner with
+ * its nCells note, neighbour, boundary incl. inGroups and cyclic entries),
+ * each file written to a temporary name and renamed into place. precision:
+ * significant digits of the points. */
+ump_status pmesh_write(const pmesh *m, const char *dir, int precision, ump_err *err);
+
 ump_status pmesh_extrude(const double *xy, ump_idx nv, const ump_idx *poly_off,
                          const ump_idx *poly_v, ump_idx npoly, double thickness,
                          int (*patch_of)(double x, double y, void *ctx), void *ctx,
