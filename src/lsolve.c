@@ -14,9 +14,12 @@
  * original column of the smallest pivot; KLU: Common.singular_col;
  * CHOLMOD: L->minor). Exact zero pivots are not the only failure: a matrix
  * that is singular in exact arithmetic (a pure-Neumann Laplacian with no
- * reference value) usually factorizes with a round-off pivot, so the crude
- * reciprocal condition estimate min|U_kk|/max|U_kk| is also checked against
- * LSOLVE_RCOND_MIN.
+ * reference value, a PPE region without a reference) usually factorizes with
+ * a round-off pivot whose size grows with n, so pivot ratios cannot tell it
+ * from an ill-conditioned matrix. After every numeric factorization the
+ * 1-norm condition number is estimated (Hager 1984 / Higham 1988, a few
+ * solves with A and A^T) and a matrix with cond_1(A) > LSOLVE_COND_MAX is
+ * refused as numerically singular.
  */
 #include "umppm/lsolve.h"
 
@@ -32,10 +35,12 @@
 /* SuiteSparse's int interfaces (umfpack_di_*, klu_*, cholmod_*) take int. */
 _Static_assert(sizeof(ump_idx) == sizeof(int), "lsolve uses the int SuiteSparse interfaces");
 
-/* Pivot ratio below which a factorization is declared numerically singular.
- * Pure-Neumann Laplacians (singular in exact arithmetic) give ~1e-17..1e-15
- * on the meshes we tried; PPE matrices with a reference cell give > 1e-4. */
-#define LSOLVE_RCOND_MIN 1e-13
+/* Condition number above which a factorization is declared numerically
+ * singular: the solution would keep fewer than ~5 significant digits
+ * (cond * DBL_EPSILON > 2e-5). Measured: 5-point pure-Neumann Laplacians
+ * (singular in exact arithmetic) estimate at 5e16..6e17 for n = 25..1e5,
+ * the same with one cell pinned at 2e2..3e6. */
+#define LSOLVE_COND_MAX 1e11
 
 #define ALLOC(p, n) ((p) = ump_alloc_array((size_t)(n), sizeof *(p)))
 
@@ -276,6 +281,8 @@ struct lsolve {
     cholmod_factor *L;
     cholmod_dense *B, *X, *Y, *E;
     double sign;
+    double cond;           /* 1-norm condition estimate of the last factorization */
+    int valid;             /* factors usable by lsolve_solve */
 };
 
 const char *lsolve_name(const lsolve *s)
@@ -412,16 +419,6 @@ static ump_status umfpack_numeric_step(lsolve *s, ump_err *err)
         s->num = NULL;
         return umfpack_status(st, "numeric factorization", err);
     }
-    double rcond = s->info[UMFPACK_RCOND];
-    if (!(rcond >= LSOLVE_RCOND_MIN)) {
-        double piv = 0;
-        int col = umfpack_worst_column(s, &piv);
-        umfpack_di_free_numeric(&s->num);
-        return UMP_FAIL(err, UMP_ERR_SINGULAR,
-                        "UMFPACK: matrix (n = %d) is numerically singular: pivot ratio %.3g < %g, "
-                        "smallest pivot %.3g in column %d",
-                        (int)A->n, rcond, LSOLVE_RCOND_MIN, piv, col);
-    }
     return UMP_OK;
 }
 
@@ -461,27 +458,20 @@ static ump_status klu_status(const lsolve *s, const char *what, ump_err *err)
     }
 }
 
-/* Numerical singularity check after klu_factor/klu_refactor. */
-static ump_status klu_check_rcond(lsolve *s, ump_err *err)
+/* KLU: original column of the smallest |U_kk| (Udiag is in pivotal order,
+ * the symbolic Q maps it to columns). */
+static int klu_worst_column(const lsolve *s, double *piv)
 {
-    if (!klu_rcond(s->ks, s->kn, &s->kc))
-        return klu_status(s, "klu_rcond", err);
-    if (s->kc.rcond >= LSOLVE_RCOND_MIN)
-        return UMP_OK;
-    /* locate the smallest pivot: Udiag is in pivotal order, Q maps to columns */
-    ump_idx n = s->A->n;
     const double *Ud = (const double *)s->kn->Udiag;
     int col = -1;
     double best = INFINITY;
-    for (ump_idx k = 0; k < n; k++)
+    for (ump_idx k = 0; k < s->A->n; k++)
         if (fabs(Ud[k]) < best) {
             best = fabs(Ud[k]);
             col = s->ks->Q[k];
         }
-    return UMP_FAIL(err, UMP_ERR_SINGULAR,
-                    "KLU: matrix (n = %d) is numerically singular: pivot ratio %.3g < %g, smallest "
-                    "pivot %.3g in column %d",
-                    (int)n, s->kc.rcond, LSOLVE_RCOND_MIN, best, col);
+    *piv = best;
+    return col;
 }
 
 static ump_status klu_setup(lsolve *s, ump_err *err)
@@ -499,7 +489,7 @@ static ump_status klu_setup(lsolve *s, ump_err *err)
             s->kc.status = KLU_INVALID;
         return klu_status(s, "klu_factor", err);
     }
-    return klu_check_rcond(s, err);
+    return UMP_OK;
 }
 
 static ump_status cholmod_status(const lsolve *s, const char *what, ump_err *err)
@@ -539,11 +529,6 @@ static ump_status cholmod_numeric_step(lsolve *s, ump_err *err)
     cholmod_load_values(s);
     if (!cholmod_factorize(s->cA, s->L, &s->cc) || s->cc.status != CHOLMOD_OK)
         return cholmod_status(s, "cholmod_factorize", err);
-    double rcond = cholmod_rcond(s->L, &s->cc);
-    if (!(rcond >= LSOLVE_RCOND_MIN))
-        return UMP_FAIL(err, UMP_ERR_SINGULAR,
-                        "CHOLMOD: matrix (n = %d) is numerically singular: pivot ratio %.3g < %g",
-                        (int)s->A->n, rcond, LSOLVE_RCOND_MIN);
     return UMP_OK;
 }
 
@@ -567,7 +552,9 @@ static ump_status cholmod_setup(lsolve *s, ump_err *err)
               "%d zero entries", (int)n, npos, nneg, (int)n - npos - nneg);
     cholmod_start(&s->cc);
     s->cholmod_started = 1;
-    s->cc.print = 0; /* silent: we report */
+    s->cc.print = 0;    /* silent: we report */
+    s->cc.final_ll = 1; /* LL' also for simplicial factors: a simplicial LDL' would
+                           accept an indefinite matrix without pivoting */
     size_t nnz = (size_t)A->Ap[n];
     s->cA = cholmod_allocate_sparse((size_t)n, (size_t)n, nnz, 1, 1, 1, CHOLMOD_REAL, &s->cc);
     s->B = cholmod_allocate_dense((size_t)n, 1, (size_t)n, CHOLMOD_REAL, &s->cc);
@@ -612,6 +599,142 @@ static int auto_wants_cholmod(const lsolve_mat *A)
     return A->n > 0 && (npos == A->n || nneg == A->n);
 }
 
+/* x <- A^-1 b (trans = 0) or A^-T b (trans = 1) with the current factors. */
+static ump_status solve_sys(lsolve *s, int trans, const double *b, double *x, ump_err *err)
+{
+    ump_idx n = s->A->n;
+    switch (s->kind) {
+    case LSOLVE_UMFPACK: {
+        /* wsolve: the workspace (with iterative refinement) was allocated once */
+        int st = umfpack_di_wsolve(trans ? UMFPACK_At : UMFPACK_A, s->A->Ap, s->A->Ai, s->A->Ax, x, b,
+                                   s->num, s->control, s->info, s->Wi, s->W);
+        if (st == UMFPACK_WARNING_singular_matrix)
+            return UMP_FAIL(err, UMP_ERR_SINGULAR, "UMFPACK: solve with a singular matrix (n = %d)",
+                            (int)n);
+        if (st != UMFPACK_OK)
+            return umfpack_status(st, "solve", err);
+        return UMP_OK;
+    }
+    case LSOLVE_KLU:
+        memcpy(x, b, sizeof *x * (size_t)n); /* klu_solve works in place */
+        if (!(trans ? klu_tsolve(s->ks, s->kn, n, 1, x, &s->kc) : klu_solve(s->ks, s->kn, n, 1, x, &s->kc)))
+            return klu_status(s, "klu_solve", err);
+        return UMP_OK;
+    case LSOLVE_CHOLMOD: {
+        double *bx = s->B->x;
+        for (ump_idx i = 0; i < n; i++)
+            bx[i] = s->sign * b[i]; /* (sign A) x = sign b; A^T = A */
+        /* solve2 allocates X, Y, E on the first call only and reuses them */
+        if (!cholmod_solve2(CHOLMOD_A, s->L, s->B, NULL, &s->X, NULL, &s->Y, &s->E, &s->cc))
+            return cholmod_status(s, "cholmod_solve2", err);
+        memcpy(x, s->X->x, sizeof *x * (size_t)n);
+        return UMP_OK;
+    }
+    case LSOLVE_AUTO: break;
+    }
+    return UMP_FAIL(err, UMP_ERR_INPUT, "lsolve: bad solver object");
+}
+
+static double norm1(ump_idx n, const double *x)
+{
+    double s = 0.0;
+    for (ump_idx i = 0; i < n; i++)
+        s += fabs(x[i]);
+    return s;
+}
+
+/* Estimate ||A^-1||_1 by Hager's method (Hager 1984, with Higham's 1988
+ * safeguards as in LAPACK's xLACON): at most 5 pairs of solves with A and
+ * A^T, plus one extra solve with an alternating vector. Non-finite -> inf. */
+static ump_status estimate_inverse_norm(lsolve *s, double *est, ump_err *err)
+{
+    ump_idx n = s->A->n;
+    double *x = NULL, *y = NULL, *z = NULL;
+    ALLOC(x, n);
+    ALLOC(y, n);
+    ALLOC(z, n);
+    ump_status rc = UMP_OK;
+    if (!x || !y || !z) {
+        rc = UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory estimating the condition number",
+                      lsolve_name(s));
+        goto done;
+    }
+    *est = 0.0;
+    for (ump_idx i = 0; i < n; i++)
+        x[i] = 1.0 / n;
+    ump_idx jold = -1;
+    for (int it = 0; it < 5; it++) {
+        if ((rc = solve_sys(s, 0, x, y, err)) != UMP_OK)
+            goto done;                          /* y <- A^-1 x */
+        double e = norm1(n, y);
+        if (!isfinite(e)) {
+            *est = INFINITY;
+            goto done;
+        }
+        if (it > 0 && e <= *est)
+            break;                              /* no progress */
+        *est = e;
+        for (ump_idx i = 0; i < n; i++)
+            x[i] = y[i] >= 0 ? 1.0 : -1.0;      /* xi <- sign(y) */
+        if ((rc = solve_sys(s, 1, x, z, err)) != UMP_OK)
+            goto done;                          /* z <- A^-T xi */
+        ump_idx j = 0;
+        for (ump_idx i = 1; i < n; i++)
+            if (fabs(z[i]) > fabs(z[j]))
+                j = i;
+        if (j == jold)
+            break;
+        jold = j;
+        for (ump_idx i = 0; i < n; i++)
+            x[i] = 0.0;
+        x[j] = 1.0;                             /* x <- e_j */
+    }
+    /* Higham's alternating vector guards against Hager's worst cases */
+    for (ump_idx i = 0; i < n; i++)
+        x[i] = (i % 2 ? -1.0 : 1.0) * (1.0 + (n > 1 ? (double)i / (n - 1) : 0.0));
+    if ((rc = solve_sys(s, 0, x, y, err)) != UMP_OK)
+        goto done;
+    double alt = 2.0 * norm1(n, y) / (3.0 * n);
+    *est = isfinite(alt) ? fmax(*est, alt) : INFINITY;
+done:
+    free(x);
+    free(y);
+    free(z);
+    return rc;
+}
+
+/* After every numeric factorization: refuse a numerically singular matrix. */
+static ump_status check_condition(lsolve *s, ump_err *err)
+{
+    const lsolve_mat *A = s->A;
+    double anorm = 0.0;
+    for (ump_idx j = 0; j < A->n; j++) {
+        double c = 0.0;
+        for (ump_idx p = A->Ap[j]; p < A->Ap[j + 1]; p++)
+            c += fabs(A->Ax[p]);
+        anorm = fmax(anorm, c);                 /* ||A||_1 = max column sum */
+    }
+    double ainv = 0.0;
+    UMP_CALL(estimate_inverse_norm(s, &ainv, err));
+    s->cond = anorm * ainv;
+    if (s->cond <= LSOLVE_COND_MAX)
+        return UMP_OK;
+    double piv = 0.0;
+    int col = -1;
+    if (s->kind == LSOLVE_UMFPACK)
+        col = umfpack_worst_column(s, &piv);
+    else if (s->kind == LSOLVE_KLU)
+        col = klu_worst_column(s, &piv);
+    if (col >= 0)
+        return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                        "%s: matrix (n = %d) is numerically singular: condition number ~%.2g > %g, "
+                        "smallest pivot %.3g in column %d",
+                        lsolve_name(s), (int)A->n, s->cond, LSOLVE_COND_MAX, piv, col);
+    return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                    "%s: matrix (n = %d) is numerically singular: condition number ~%.2g > %g",
+                    lsolve_name(s), (int)A->n, s->cond, LSOLVE_COND_MAX);
+}
+
 ump_status lsolve_factor(const lsolve_mat *A, lsolve_kind kind, lsolve **out, ump_err *err)
 {
     *out = NULL;
@@ -632,12 +755,38 @@ ump_status lsolve_factor(const lsolve_mat *A, lsolve_kind kind, lsolve **out, um
             rc = factor_with(s, kind == LSOLVE_AUTO ? LSOLVE_UMFPACK : kind, err);
         }
     }
+    if (rc == UMP_OK)
+        rc = check_condition(s, err);
     if (rc != UMP_OK) {
         lsolve_free(&s);
         return rc;
     }
+    s->valid = 1;
     *out = s;
     return UMP_OK;
+}
+
+static ump_status refactor_values(lsolve *s, ump_err *err)
+{
+    switch (s->kind) {
+    case LSOLVE_UMFPACK:
+        return umfpack_numeric_step(s, err);
+    case LSOLVE_KLU:
+        /* klu_refactor keeps the pivot order of klu_factor: fast, but it may
+         * lose stability if the values change much (the condition check then
+         * usually catches it) */
+        if (!klu_refactor(s->A->Ap, s->A->Ai, s->A->Ax, s->ks, s->kn, &s->kc) ||
+            s->kc.status != KLU_OK) {
+            if (s->kc.status == KLU_OK)
+                s->kc.status = KLU_INVALID;
+            return klu_status(s, "klu_refactor", err);
+        }
+        return UMP_OK;
+    case LSOLVE_CHOLMOD:
+        return cholmod_numeric_step(s, err); /* the sign is kept from lsolve_factor */
+    case LSOLVE_AUTO: break;
+    }
+    return UMP_FAIL(err, UMP_ERR_INPUT, "lsolve: bad solver object");
 }
 
 ump_status lsolve_refactor(lsolve *s, const lsolve_mat *A, ump_err *err)
@@ -647,66 +796,24 @@ ump_status lsolve_refactor(lsolve *s, const lsolve_mat *A, ump_err *err)
     UMP_CHECK(all_finite(A), err, UMP_ERR_INPUT, "%s: matrix (n = %d) has NaN or infinite entries",
               lsolve_name(s), (int)A->n);
     memcpy(s->A->Ax, A->Ax, sizeof *A->Ax * (size_t)A->Ap[A->n]);
-    switch (s->kind) {
-    case LSOLVE_UMFPACK:
-        return umfpack_numeric_step(s, err);
-    case LSOLVE_KLU:
-        /* klu_refactor keeps the pivot order of klu_factor (fast, but may lose
-         * stability if the values change much); a failure leaves kn unusable */
-        if (!s->kn)
-            return UMP_FAIL(err, UMP_ERR_INPUT, "KLU: no factorization to refactor");
-        if (!klu_refactor(s->A->Ap, s->A->Ai, s->A->Ax, s->ks, s->kn, &s->kc) ||
-            s->kc.status != KLU_OK) {
-            if (s->kc.status == KLU_OK)
-                s->kc.status = KLU_INVALID;
-            return klu_status(s, "klu_refactor", err);
-        }
-        return klu_check_rcond(s, err);
-    case LSOLVE_CHOLMOD: {
-        /* the sign is kept from the first factorization */
-        return cholmod_numeric_step(s, err);
-    }
-    case LSOLVE_AUTO: break;
-    }
-    return UMP_FAIL(err, UMP_ERR_INPUT, "lsolve: bad solver object");
+    /* a failed refactor leaves no usable factors until a successful one */
+    s->valid = 0;
+    UMP_CALL(refactor_values(s, err));
+    UMP_CALL(check_condition(s, err));
+    s->valid = 1;
+    return UMP_OK;
 }
 
 ump_status lsolve_solve(lsolve *s, const double *b, double *x, ump_err *err)
 {
-    ump_idx n = s->A->n;
-    switch (s->kind) {
-    case LSOLVE_UMFPACK: {
-        UMP_CHECK(s->num, err, UMP_ERR_SINGULAR, "UMFPACK: no valid factorization to solve with");
-        int st = umfpack_di_wsolve(UMFPACK_A, s->A->Ap, s->A->Ai, s->A->Ax, x, b, s->num, s->control,
-                                   s->info, s->Wi, s->W);
-        if (st == UMFPACK_WARNING_singular_matrix)
-            return UMP_FAIL(err, UMP_ERR_SINGULAR, "UMFPACK: solve with a singular matrix (n = %d)",
-                            (int)n);
-        if (st != UMFPACK_OK)
-            return umfpack_status(st, "solve", err);
-        return UMP_OK;
-    }
-    case LSOLVE_KLU:
-        UMP_CHECK(s->kn, err, UMP_ERR_SINGULAR, "KLU: no valid factorization to solve with");
-        memcpy(x, b, sizeof *x * (size_t)n); /* klu_solve works in place */
-        if (!klu_solve(s->ks, s->kn, n, 1, x, &s->kc))
-            return klu_status(s, "klu_solve", err);
-        return UMP_OK;
-    case LSOLVE_CHOLMOD: {
-        UMP_CHECK(s->L && s->L->minor == (size_t)n, err, UMP_ERR_SINGULAR,
-                  "CHOLMOD: no valid factorization to solve with");
-        double *bx = s->B->x;
-        for (ump_idx i = 0; i < n; i++)
-            bx[i] = s->sign * b[i]; /* (sign A) x = sign b */
-        /* solve2 allocates X, Y, E on the first call only and reuses them */
-        if (!cholmod_solve2(CHOLMOD_A, s->L, s->B, NULL, &s->X, NULL, &s->Y, &s->E, &s->cc))
-            return cholmod_status(s, "cholmod_solve2", err);
-        memcpy(x, s->X->x, sizeof *x * (size_t)n);
-        return UMP_OK;
-    }
-    case LSOLVE_AUTO: break;
-    }
-    return UMP_FAIL(err, UMP_ERR_INPUT, "lsolve: bad solver object");
+    UMP_CHECK(s->valid, err, UMP_ERR_SINGULAR, "%s: no valid factorization (a refactor failed)",
+              lsolve_name(s));
+    return solve_sys(s, 0, b, x, err);
+}
+
+double lsolve_condest(const lsolve *s)
+{
+    return s->cond;
 }
 
 size_t lsolve_factor_nnz(const lsolve *s)

@@ -57,15 +57,21 @@ typedef enum lsolve_kind {
 typedef struct lsolve lsolve; /* opaque factorization */
 
 /* Analyse and factorize A. A singular matrix fails with UMP_ERR_SINGULAR
- * naming the failing column/row when SuiteSparse reports it. */
+ * naming the failing column/row when SuiteSparse reports it; so does a
+ * numerically singular one (estimated 1-norm condition number > 1e11, e.g. a
+ * pure-Neumann Laplacian that factorizes with a round-off pivot). */
 ump_status lsolve_factor(const lsolve_mat *A, lsolve_kind kind, lsolve **out, ump_err *err);
-/* New numerical values, same pattern as the factorized matrix. */
+/* New numerical values, same pattern as the factorized matrix. On failure
+ * the object stays allocated but lsolve_solve refuses until a refactor
+ * succeeds. */
 ump_status lsolve_refactor(lsolve *s, const lsolve_mat *A, ump_err *err);
 /* Solve A x = b (x and b may not alias). */
 ump_status lsolve_solve(lsolve *s, const double *b, double *x, ump_err *err);
 /* Which solver was used ("UMFPACK", "KLU", "CHOLMOD") and factor nnz. */
 const char *lsolve_name(const lsolve *s);
 size_t lsolve_factor_nnz(const lsolve *s);
+/* Estimated 1-norm condition number of the factorized matrix (Hager/Higham). */
+double lsolve_condest(const lsolve *s);
 void lsolve_free(lsolve **s);
 
 /* ---- iterative ---------------------------------------------------------- */
