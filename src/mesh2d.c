@@ -608,7 +608,7 @@ static void closest_image(const lattice *L, double dx, double dy, double *sx, do
     int ncomb = 1;
     for (int i = 0; i < L->n; i++)
         ncomb *= 3;
-    for (int c = 1; c < ncomb; c++) {
+    for (int c = 0; c < ncomb; c++) { /* c = 0 is k = (-1,-1,..), not the zero shift */
         double tx = 0, ty = 0;
         for (int i = 0, r = c; i < L->n; i++, r /= 3) {
             int k = r % 3 - 1;
