@@ -644,6 +644,55 @@ static void test_random_differential(void **state)
     free(rowsum);
 }
 
+/* allocation failures in assembly, factorization and the Krylov workspace
+ * are reported as UMP_ERR_NOMEM (SuiteSparse's own allocations excepted) */
+static void test_out_of_memory(void **state)
+{
+    (void)state;
+    int nfail = 0;
+    for (long k = 0;; k++) {
+        ump_err err;
+        lsolve_trip t = {0, 0, 0, NULL, NULL, NULL};
+        lsolve_mat *A = NULL;
+        lsolve *s = NULL;
+        lsolve_krylov *kr = NULL;
+        ump_alloc_fail_after(k);
+        ump_status rc = lsolve_trip_init(&t, 50, 4, &err);
+        for (int i = 0; i < 50 && rc == UMP_OK; i++) {
+            rc = lsolve_trip_add(&t, i, i, 3.0, &err);
+            if (rc == UMP_OK && i > 0)
+                rc = lsolve_trip_add(&t, i, i - 1, -1.0, &err);
+            if (rc == UMP_OK && i > 0)
+                rc = lsolve_trip_add(&t, i - 1, i, -1.0, &err);
+        }
+        if (rc == UMP_OK)
+            rc = lsolve_trip_to_mat(&t, &A, &err);
+        for (int kind = 1; kind <= 3 && rc == UMP_OK; kind++) {
+            rc = lsolve_factor(A, (lsolve_kind)kind, &s, &err);
+            lsolve_free(&s);
+        }
+        if (rc == UMP_OK)
+            rc = lsolve_krylov_create(50, &kr, &err);
+        if (rc == UMP_OK) {
+            double b[50], x[50] = {0};
+            lsolve_stats st;
+            for (int i = 0; i < 50; i++)
+                b[i] = 1;
+            rc = lsolve_bicgstab(kr, A, LSOLVE_PC_ILU0, b, x, 1e-10, 100, &st, &err);
+        }
+        ump_alloc_fail_after(-1);
+        lsolve_krylov_free(&kr);
+        lsolve_mat_free(&A);
+        lsolve_trip_free(&t);
+        if (rc == UMP_OK)
+            break;
+        if (rc != UMP_ERR_NOMEM)
+            fail_msg("allocation %ld failing: %s", k, err.msg);
+        nfail++;
+    }
+    assert_true(nfail >= 10);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -656,6 +705,7 @@ int main(void)
         cmocka_unit_test(test_bicgstab),
         cmocka_unit_test(test_ilu0_exact),
         cmocka_unit_test(test_random_differential),
+        cmocka_unit_test(test_out_of_memory),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -431,6 +431,36 @@ static void test_refusals(void **state)
     free(dir);
 }
 
+/* every allocation failure in lsq_build and ppe_create is reported, not a
+ * crash or a leak (the sanitizer build checks the leaks) */
+static void test_out_of_memory(void **state)
+{
+    (void)state;
+    pmesh *pm = NULL;
+    mesh2d *m = tm_mesh(TM_HYBRID, 6, 0.05, 0, &pm);
+    int nfail = 0;
+    for (long k = 0;; k++) {
+        ump_err err;
+        lsq_grad *g = NULL;
+        ppe *P = NULL;
+        ump_alloc_fail_after(k);
+        ump_status rc = lsq_build(m, &g, &err);
+        if (rc == UMP_OK)
+            rc = ppe_create(m, g, NULL, NULL, &P, &err);
+        ump_alloc_fail_after(-1);
+        ppe_free(&P);
+        lsq_free(&g);
+        if (rc == UMP_OK)
+            break;
+        assert_int_equal(rc, UMP_ERR_NOMEM);
+        assert_true(strlen(err.msg) > 0);
+        nfail++;
+    }
+    assert_true(nfail >= 10);
+    mesh_free(&m);
+    pmesh_free(&pm);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -441,6 +471,7 @@ int main(void)
         cmocka_unit_test(test_mixed_continuity),
         cmocka_unit_test(test_reuse),
         cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_out_of_memory),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
