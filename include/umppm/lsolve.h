@@ -48,10 +48,12 @@ void lsolve_mat_mult(const lsolve_mat *A, const double *x, double *y);
 int lsolve_mat_is_symmetric(const lsolve_mat *A, double tol);
 
 typedef enum lsolve_kind {
-    LSOLVE_AUTO,     /* CHOLMOD if symmetric (and definite), else UMFPACK */
+    LSOLVE_AUTO,     /* CHOLMOD if exactly symmetric with a one-signed diagonal
+                        (UMFPACK if CHOLMOD then finds it indefinite), else UMFPACK */
     LSOLVE_UMFPACK,
     LSOLVE_KLU,
-    LSOLVE_CHOLMOD   /* symmetric positive (or negative: sign handled) definite */
+    LSOLVE_CHOLMOD   /* symmetric (to 1e-12 relative; the upper triangle is
+                        used) positive or negative (sign handled) definite */
 } lsolve_kind;
 
 typedef struct lsolve lsolve; /* opaque factorization */

@@ -16,7 +16,13 @@
  *     p_f goes to the right-hand side.
  * With no Dirichlet face the problem is singular up to a constant: the row
  * of the reference cell (fvSolution pRefCell) is replaced by p = pRefValue,
- * as OpenFOAM's setReference does in effect.
+ * as OpenFOAM's setReference does in effect (and its column moved to the
+ * right-hand side, so a symmetric matrix stays symmetric). Every other cell
+ * then balances exactly; the reference cell absorbs the net imbalance of the
+ * fluxes (the net boundary outflow).
+ * Faces whose centroid offsets AA', BB' are round-off (below 1e-10 of the
+ * centroid-face distance) are treated as orthogonal: an orthogonal quad mesh
+ * gives exactly the symmetric 5-point matrix (CHOLMOD under LSOLVE_AUTO).
  * The matrix depends only on the mesh and the set of Dirichlet faces: it is
  * assembled and factorized ONCE (ppe_create); each time step is one solve.
  */
