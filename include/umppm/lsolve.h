@@ -90,7 +90,12 @@ typedef struct lsolve_krylov lsolve_krylov;
 ump_status lsolve_krylov_create(ump_idx n, lsolve_krylov **out, ump_err *err);
 void lsolve_krylov_free(lsolve_krylov **k);
 /* Solve A x = b from the initial guess in x (warm start) to relative
- * residual tol or maxit iterations. A may have a new pattern each call. */
+ * residual tol or maxit iterations. A may have a new pattern each call (the
+ * ILU(0) value array grows to the largest nnz seen; nothing else is
+ * allocated). Preconditioning is on the right, so st->res is the true
+ * ||b - A x|| / ||b||, recomputed at the end. Non-convergence and breakdown
+ * are reported in st (UMP_OK); errors are bad sizes, a zero diagonal
+ * (Jacobi) or a zero ILU(0) pivot (UMP_ERR_SINGULAR), out of memory. */
 ump_status lsolve_bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, const double *b,
                            double *x, double tol, int maxit, lsolve_stats *st, ump_err *err);
 
