@@ -55,24 +55,32 @@ void lsolve_mat_mult(const lsolve_mat *A, const double *x, double *y);
 int lsolve_mat_is_symmetric(const lsolve_mat *A, double tol);
 
 typedef enum lsolve_kind {
-    LSOLVE_AUTO,     /* CHOLMOD if symmetric (and definite), else UMFPACK */
+    LSOLVE_AUTO,     /* CHOLMOD if exactly symmetric with a one-signed diagonal
+                        (UMFPACK if CHOLMOD then finds it indefinite), else UMFPACK */
     LSOLVE_UMFPACK,
     LSOLVE_KLU,
-    LSOLVE_CHOLMOD   /* symmetric positive (or negative: sign handled) definite */
+    LSOLVE_CHOLMOD   /* symmetric (to 1e-12 relative; the upper triangle is
+                        used) positive or negative (sign handled) definite */
 } lsolve_kind;
 
 typedef struct lsolve lsolve; /* opaque factorization */
 
 /* Analyse and factorize A. A singular matrix fails with UMP_ERR_SINGULAR
- * naming the failing column/row when SuiteSparse reports it. */
+ * naming the failing column/row when SuiteSparse reports it; so does a
+ * numerically singular one (estimated 1-norm condition number > 1e11, e.g. a
+ * pure-Neumann Laplacian that factorizes with a round-off pivot). */
 ump_status lsolve_factor(const lsolve_mat *A, lsolve_kind kind, lsolve **out, ump_err *err);
-/* New numerical values, same pattern as the factorized matrix. */
+/* New numerical values, same pattern as the factorized matrix. On failure
+ * the object stays allocated but lsolve_solve refuses until a refactor
+ * succeeds. */
 ump_status lsolve_refactor(lsolve *s, const lsolve_mat *A, ump_err *err);
 /* Solve A x = b (x and b may not alias). */
 ump_status lsolve_solve(lsolve *s, const double *b, double *x, ump_err *err);
 /* Which solver was used ("UMFPACK", "KLU", "CHOLMOD") and factor nnz. */
 const char *lsolve_name(const lsolve *s);
 size_t lsolve_factor_nnz(const lsolve *s);
+/* Estimated 1-norm condition number of the factorized matrix (Hager/Higham). */
+double lsolve_condest(const lsolve *s);
 void lsolve_free(lsolve **s);
 
 /* ---- iterative ---------------------------------------------------------- */
@@ -89,7 +97,12 @@ typedef struct lsolve_krylov lsolve_krylov;
 ump_status lsolve_krylov_create(ump_idx n, lsolve_krylov **out, ump_err *err);
 void lsolve_krylov_free(lsolve_krylov **k);
 /* Solve A x = b from the initial guess in x (warm start) to relative
- * residual tol or maxit iterations. A may have a new pattern each call. */
+ * residual tol or maxit iterations. A may have a new pattern each call (the
+ * ILU(0) value array grows to the largest nnz seen; nothing else is
+ * allocated). Preconditioning is on the right, so st->res is the true
+ * ||b - A x|| / ||b||, recomputed at the end. Non-convergence and breakdown
+ * are reported in st (UMP_OK); errors are bad sizes, a zero diagonal
+ * (Jacobi) or a zero ILU(0) pivot (UMP_ERR_SINGULAR), out of memory. */
 ump_status lsolve_bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, const double *b,
                            double *x, double tol, int maxit, lsolve_stats *st, ump_err *err);
 

@@ -16,7 +16,13 @@
  *     p_f goes to the right-hand side.
  * With no Dirichlet face the problem is singular up to a constant: the row
  * of the reference cell (fvSolution pRefCell) is replaced by p = pRefValue,
- * as OpenFOAM's setReference does in effect.
+ * as OpenFOAM's setReference does in effect (and its column moved to the
+ * right-hand side, so a symmetric matrix stays symmetric). Every other cell
+ * then balances exactly; the reference cell absorbs the net imbalance of the
+ * fluxes (the net boundary outflow).
+ * Faces whose centroid offsets AA', BB' are round-off (below 1e-10 of the
+ * centroid-face distance) are treated as orthogonal: an orthogonal quad mesh
+ * gives exactly the symmetric 5-point matrix (CHOLMOD under LSOLVE_AUTO).
  * The matrix depends only on the mesh and the set of Dirichlet faces: it is
  * assembled and factorized ONCE (ppe_create); each time step is one solve.
  */
@@ -44,9 +50,26 @@ typedef struct ppe {
     lsolve *fac;              /* its factorization */
     double *bd_coef;          /* [nfaces] coefficient of p_f on Dirichlet faces */
     double *rhs;              /* [ncells] workspace */
+    /* Face operator (Eq. 25 expanded through the LS weights), CSR over faces:
+     * grad p_f . A_f = sum_k fop_val[k] p[fop_col[k]] (+ bd_coef[f] p_f on
+     * Dirichlet faces); empty rows on Neumann faces. The matrix is assembled
+     * from these rows (+ for the owner's row, - for the neighbour's), so
+     * ppe_face_gradient_flux is exactly the matrix discretisation. */
+    ump_idx *fop_off;         /* [nfaces+1] */
+    ump_idx *fop_col;         /* [fop_off[nfaces]] cells */
+    double *fop_val;          /* [fop_off[nfaces]] */
+    /* Reference cell (no Dirichlet face): its row becomes ref_diag p = ref_diag
+     * pRefValue and its column is moved to the right-hand side, which keeps a
+     * symmetric matrix symmetric (CHOLMOD on orthogonal meshes). */
+    ump_idx nref;             /* entries of the reference column moved */
+    ump_idx *ref_row;         /* [nref] rows i != ref_cell */
+    double *ref_a;            /* [nref] original A(i, ref_cell) */
+    double ref_diag;          /* A(ref_cell, ref_cell) */
 } ppe;
 
-/* dirichlet [m->nfaces] (may be NULL: none) marks faces with prescribed p. */
+/* dirichlet [m->nfaces] (may be NULL: none) marks faces with prescribed p
+ * (boundary faces only). o may be NULL: LSOLVE_AUTO, ref_cell 0, ref_value 0.
+ * g must be the LS gradient of m; both are borrowed and must outlive *out. */
 ump_status ppe_create(const mesh2d *m, const lsq_grad *g, const unsigned char *dirichlet,
                       const ppe_opts *o, ppe **out, ump_err *err);
 void ppe_free(ppe **P);
