@@ -187,10 +187,11 @@ static void apply_pc(const lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, 
 ump_status lsolve_bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, const double *b,
                            double *x, double tol, int maxit, lsolve_stats *st, ump_err *err)
 {
-    const ump_idx n = k->n;
+    /* the workspace may be larger than A: the particle count varies per step */
+    const ump_idx n = A->n;
     memset(st, 0, sizeof *st);
-    UMP_CHECK(A->n == n, err, UMP_ERR_INPUT, "BiCGSTAB: matrix of order %d, workspace for %d",
-              (int)A->n, (int)n);
+    UMP_CHECK(A->n <= k->n, err, UMP_ERR_INPUT, "BiCGSTAB: matrix of order %d, workspace for %d",
+              (int)A->n, (int)k->n);
     UMP_CHECK(tol > 0 && maxit >= 0, err, UMP_ERR_INPUT, "BiCGSTAB: tolerance %g, %d iterations",
               tol, maxit);
     if (pc == LSOLVE_PC_JACOBI)

@@ -12,6 +12,7 @@
  * as postProcess -func writeCellCentres / writeCellVolumes), each file
  * written under a temporary name and renamed into place.
  */
+#include "umppm/app.h"
 #include "umppm/case.h"
 #include "umppm/field.h"
 #include "umppm/fieldio.h"
@@ -298,6 +299,12 @@ int main(int argc, char **argv)
     banner(argc, argv, o.case_dir);
 
     ump_err err;
+    if (!o.check_mesh) {
+        if (app_run(o.case_dir, &err) != UMP_OK)
+            return fatal(&err);
+        printf("End\n\n");
+        return 0;
+    }
     case_control ctl;
     printf("Create time\n\n");
     if (case_read_control(o.case_dir, &ctl, &err) != UMP_OK)
@@ -318,16 +325,10 @@ int main(int argc, char **argv)
         pmesh_free(&pm);
         return fatal(&err);
     }
+    print_mesh(pm, m);
     int rc = 0;
-    if (o.check_mesh) {
-        print_mesh(pm, m);
-        if (o.write_fields)
-            rc = write_fields(o.case_dir, tname, pm, m, &ctl);
-    } else {
-        ump_fail(&err, UMP_ERR_UNSUPPORTED, __FILE__, __LINE__,
-                 "the UMPPM time loop is not part of this build yet; run umppmFoam -checkMesh");
-        rc = fatal(&err);
-    }
+    if (o.write_fields)
+        rc = write_fields(o.case_dir, tname, pm, m, &ctl);
     mesh_free(&m);
     pmesh_free(&pm);
     if (rc == 0)
