@@ -94,6 +94,7 @@ typedef struct lsolve_stats {
 
 /* Workspace for BiCGSTAB on n unknowns (allocated once, reused each step). */
 typedef struct lsolve_krylov lsolve_krylov;
+/* n: the largest order it will serve (a smaller matrix may be solved with it). */
 ump_status lsolve_krylov_create(ump_idx n, lsolve_krylov **out, ump_err *err);
 void lsolve_krylov_free(lsolve_krylov **k);
 /* Solve A x = b from the initial guess in x (warm start) to relative

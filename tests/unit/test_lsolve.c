@@ -545,9 +545,14 @@ static void test_ilu0_exact(void **state)
     assert_int_equal(lsolve_bicgstab(k, A, LSOLVE_PC_ILU0, b, x, 1e-13, 10, &st, &err), UMP_OK);
     assert_int_equal(st.converged, 1);
     TU_CLOSE(x[3], 0, 0);
-    /* wrong size */
+    /* a larger workspace serves a smaller matrix (the particle count varies);
+     * a smaller one is refused */
     lsolve_krylov *k2 = NULL;
-    assert_int_equal(lsolve_krylov_create(n + 1, &k2, &err), UMP_OK);
+    assert_int_equal(lsolve_krylov_create(n + 7, &k2, &err), UMP_OK);
+    assert_int_equal(lsolve_bicgstab(k2, A, LSOLVE_PC_ILU0, b, x, 1e-13, 10, &st, &err), UMP_OK);
+    assert_int_equal(st.converged, 1);
+    lsolve_krylov_free(&k2);
+    assert_int_equal(lsolve_krylov_create(n - 1, &k2, &err), UMP_OK);
     assert_int_equal(lsolve_bicgstab(k2, A, LSOLVE_PC_NONE, b, x, 1e-13, 10, &st, &err), UMP_ERR_INPUT);
     lsolve_krylov_free(&k2);
     lsolve_mat_free(&A);
