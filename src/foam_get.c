@@ -847,6 +847,90 @@ ump_status foam_get_vector(const foam_dict *d, const char *key, double out[3], u
     return UMP_OK;
 }
 
+/* SI unit names OpenFOAM accepts inside [ ] (those with factor 1 only):
+ * exponents of kg m s K mol A cd. */
+static int unit_dims(const char *u, double d[7])
+{
+    static const struct { const char *name; signed char e[7]; } units[] = {
+        {"kg", {1, 0, 0, 0, 0, 0, 0}},   {"m", {0, 1, 0, 0, 0, 0, 0}},
+        {"s", {0, 0, 1, 0, 0, 0, 0}},    {"K", {0, 0, 0, 1, 0, 0, 0}},
+        {"mol", {0, 0, 0, 0, 1, 0, 0}},  {"A", {0, 0, 0, 0, 0, 1, 0}},
+        {"cd", {0, 0, 0, 0, 0, 0, 1}},   {"N", {1, 1, -2, 0, 0, 0, 0}},
+        {"Pa", {1, -1, -2, 0, 0, 0, 0}}, {"J", {1, 2, -2, 0, 0, 0, 0}},
+        {"W", {1, 2, -3, 0, 0, 0, 0}},   {"Hz", {0, 0, -1, 0, 0, 0, 0}},
+        {"C", {0, 0, 1, 0, 0, 1, 0}},    {"V", {1, 2, -3, 0, 0, -1, 0}},
+    };
+    for (size_t i = 0; i < sizeof units / sizeof units[0]; i++)
+        if (strcmp(u, units[i].name) == 0) {
+            for (int k = 0; k < 7; k++)
+                d[k] = units[i].e[k];
+            return 1;
+        }
+    return 0;
+}
+
+/* [M L T Theta N I J] (7 or 5 numbers) or unit names such as [kg/m^3],
+ * [m s^-1], [W/m/K], [1/K]; *p is just past '['. */
+static int read_dims(const foam_token *t, size_t nt, size_t *p, double dv[7])
+{
+    size_t q = *p;
+    int k = 0;
+    double x;
+    while (k < 7 && read_number(t, nt, &q, &x))
+        dv[k++] = x;
+    if ((k == 7 || k == 5) && is_punct(t, nt, q, ']')) {
+        for (int i = k; i < 7; i++)
+            dv[i] = 0;
+        *p = q + 1;
+        return 1;
+    }
+    for (int i = 0; i < 7; i++)
+        dv[i] = 0;
+    q = *p;
+    double sign = 1;
+    int any = 0;
+    for (;;) {
+        if (is_punct(t, nt, q, ']')) {
+            *p = q + 1;
+            return any;
+        }
+        if (is_punct(t, nt, q, '/')) {
+            sign = -1;
+            q++;
+            continue;
+        }
+        if (is_punct(t, nt, q, '*')) {
+            q++;
+            continue;
+        }
+        if (q < nt && t[q].type == FOAM_TOK_LABEL && t[q].v.label == 1) {
+            sign = 1;
+            any = 1;
+            q++;
+            continue;
+        }
+        if (q >= nt || t[q].type != FOAM_TOK_WORD)
+            return 0;
+        char name[32];
+        const char *w = t[q].v.str, *caret = strchr(w, '^');
+        size_t n = caret ? (size_t)(caret - w) : strlen(w);
+        if (n == 0 || n >= sizeof name)
+            return 0;
+        memcpy(name, w, n);
+        name[n] = '\0';
+        double u[7], e = 1;
+        if (!unit_dims(name, u))
+            return 0;
+        if (caret && !word_number(caret + 1, &e))
+            return 0;
+        for (int i = 0; i < 7; i++)
+            dv[i] += sign * e * u[i];
+        sign = 1;
+        any = 1;
+        q++;
+    }
+}
+
 ump_status foam_get_dimensioned(const foam_dict *d, const char *key, double *value,
                                 double dims[7], ump_err *err)
 {
@@ -856,23 +940,16 @@ ump_status foam_get_dimensioned(const foam_dict *d, const char *key, double *val
         return missing(d, key, err);
     const foam_token *t = e->tok;
     size_t nt = e->ntok, p = 0;
-    double dv[7] = {0, 0, 0, 0, 0, 0, 0};
+    double dv[7] = {0, 0, 0, 0, 0, 0, 0}, v;
     /* optional name, optional [dims], then the value */
     if (p < nt && (t[p].type == FOAM_TOK_WORD || t[p].type == FOAM_TOK_STRING) &&
-        !word_number(t[p].v.str, &dv[0]))
+        !word_number(t[p].v.str, &v))
         p++;
-    dv[0] = 0;
     if (is_punct(t, nt, p, '[')) {
         p++;
-        int k = 0;
-        double x;
-        while (k < 7 && read_number(t, nt, &p, &x))
-            dv[k++] = x;
-        if ((k != 7 && k != 5) || !is_punct(t, nt, p, ']'))
-            return entry_error(e, key, "dimensions [M L T Theta N I J]", err);
-        p++;
+        if (!read_dims(t, nt, &p, dv))
+            return entry_error(e, key, "dimensions [M L T Theta N I J] or SI unit names", err);
     }
-    double v;
     if (!read_number(t, nt, &p, &v) || p != nt)
         return entry_error(e, key, "a dimensioned scalar ([dims] value)", err);
     *value = v;

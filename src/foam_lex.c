@@ -236,7 +236,9 @@ static ump_status make_word(foam_lexer *lx, size_t start, size_t end, foam_token
 }
 
 /* A word: word characters, keeping balanced '(' ')' (div(phi,U)); an
- * unmatched ')' ends it. Returns the end position. */
+ * unmatched ')' ends it, and so does a ']' outside parentheses (ISstream
+ * keeps it, but then "[kg/m^3]" would leave the ']' inside the word "m^3]";
+ * OpenFOAM's dimensionSet reader splits it off again). Returns the end. */
 static size_t scan_word(const foam_lexer *lx, size_t i, int allow_slash)
 {
     const char *b = lx->buf;
@@ -247,6 +249,8 @@ static size_t scan_word(const foam_lexer *lx, size_t i, int allow_slash)
             break;
         if (c == '(')
             depth++;
+        else if (c == ']' && depth == 0)
+            break; /* closes a dimension set: [kg/m^3] */
         else if (c == ')') {
             if (depth == 0)
                 break;

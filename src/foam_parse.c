@@ -293,19 +293,30 @@ static const foam_dict *dict_top(const foam_dict *d)
 
 /* ---- variables ------------------------------------------------------------- */
 
-/* Entry named s[0..n) in d, optionally searching the parents. */
-static const foam_entry *find_var_n(const foam_dict *d, const char *s, size_t n, int recursive)
+/* Entry named s[0..n) in d, optionally searching the parents. Pattern
+ * keys match only when pat is set: v1912 expands "$var" in a value
+ * literally but resolves a "$var;" keyword with regular expressions too. */
+static const foam_entry *find_var_n(const foam_dict *d, const char *s, size_t n, int recursive,
+                                    int pat)
 {
     for (; d; d = recursive ? d->parent : NULL) {
         long i = find_exact_n(d, s, n);
         if (i >= 0)
             return &d->e[i];
+        if (pat && ((const dict_impl *)d)->npat && n < 1024) {
+            char key[1024];
+            memcpy(key, s, n);
+            key[n] = '\0';
+            for (size_t k = d->n; k-- > 0;)
+                if (d->e[k].is_pattern && pattern_match(d->e[k].key, key))
+                    return &d->e[k];
+        }
     }
     return NULL;
 }
 
 /* a.b.c relative to d; leading dots go up one scope per extra dot. */
-static const foam_entry *find_dot_scoped(const foam_dict *d, const char *s)
+static const foam_entry *find_dot_scoped(const foam_dict *d, const char *s, int pat)
 {
     for (;;) {
         if (!d || !*s)
@@ -324,14 +335,14 @@ static const foam_entry *find_dot_scoped(const foam_dict *d, const char *s)
         }
         const char *dot = strchr(s, '.');
         if (!dot)
-            return find_var_n(d, s, strlen(s), 0);
-        const foam_entry *e = find_var_n(d, s, (size_t)(dot - s), 0);
+            return find_var_n(d, s, strlen(s), 0, pat);
+        const foam_entry *e = find_var_n(d, s, (size_t)(dot - s), 0, pat);
         /* fall back to keys that contain dots: a.b, a.b.c, ... */
         while (!(e && e->dict)) {
             dot = strchr(dot + 1, '.');
             if (!dot)
-                return find_var_n(d, s, strlen(s), 0);
-            e = find_var_n(d, s, (size_t)(dot - s), 0);
+                return find_var_n(d, s, strlen(s), 0, pat);
+            e = find_var_n(d, s, (size_t)(dot - s), 0, pat);
         }
         d = e->dict;
         s = dot; /* ".rest": one dot, no scope change */
@@ -339,7 +350,7 @@ static const foam_entry *find_dot_scoped(const foam_dict *d, const char *s)
 }
 
 /* a/b, /a/b, ../a : slash-separated path of sub-dictionaries. */
-static const foam_entry *find_slash_scoped(const foam_dict *d, const char *s)
+static const foam_entry *find_slash_scoped(const foam_dict *d, const char *s, int pat)
 {
     if (*s == '/') {
         d = dict_top(d);
@@ -352,7 +363,7 @@ static const foam_entry *find_slash_scoped(const foam_dict *d, const char *s)
         if (!sl) {
             if (n == 0 || (n == 1 && s[0] == '.') || (n == 2 && s[0] == '.' && s[1] == '.'))
                 return NULL;
-            return find_var_n(d, s, n, 0);
+            return find_var_n(d, s, n, 0, pat);
         }
         if (n == 0 || (n == 1 && s[0] == '.')) {
             /* stay */
@@ -361,7 +372,7 @@ static const foam_entry *find_slash_scoped(const foam_dict *d, const char *s)
             if (!d)
                 return NULL;
         } else {
-            const foam_entry *e = find_var_n(d, s, n, 0);
+            const foam_entry *e = find_var_n(d, s, n, 0, pat);
             if (!e || !e->dict)
                 return NULL;
             d = e->dict;
@@ -370,23 +381,45 @@ static const foam_entry *find_slash_scoped(const foam_dict *d, const char *s)
     }
 }
 
-static const foam_entry *resolve_var(const foam_dict *ctx, const char *name)
+static const foam_entry *resolve_var(const foam_dict *ctx, const char *name, int pat)
 {
     if (strchr(name, '/'))
-        return find_slash_scoped(ctx, name);
+        return find_slash_scoped(ctx, name, pat);
     if (name[0] == ':' || name[0] == '^')
-        return find_dot_scoped(dict_top(ctx), name + 1);
+        return find_dot_scoped(dict_top(ctx), name + 1, pat);
     if (strchr(name, '.'))
-        return find_dot_scoped(ctx, name);
-    return find_var_n(ctx, name, strlen(name), 1);
+        return find_dot_scoped(ctx, name, pat);
+    return find_var_n(ctx, name, strlen(name), 1, pat);
 }
 
-/* Variable name of a $ token into buf ("$a" -> "a", "${a.b}" -> "a.b"). */
-static ump_status var_name(parser *p, const foam_token *t, char *buf, size_t len)
+static const foam_entry *resolve_var(const foam_dict *ctx, const char *name, int pat);
+
+/* Text of a primitive entry's single word/string/number token, for the
+ * recursive substitution ${..$x..}. */
+static int entry_word(const foam_entry *e, char *buf, size_t len)
+{
+    if (!e || e->dict || e->ntok != 1)
+        return 0;
+    const foam_token *t = &e->tok[0];
+    if (t->type == FOAM_TOK_WORD || t->type == FOAM_TOK_STRING)
+        snprintf(buf, len, "%s", t->v.str);
+    else if (t->type == FOAM_TOK_LABEL)
+        snprintf(buf, len, "%lld", (long long)t->v.label);
+    else
+        return 0;
+    return 1;
+}
+
+/* Variable name of a $ token into buf ("$a" -> "a", "${a.b}" -> "a.b").
+ * Inside ${...}, $x and ${x} are replaced first (v1912 recursive
+ * substitution, e.g. ${:$LESModel}). */
+static ump_status var_name(parser *p, foam_dict *ctx, const foam_token *t, char *buf,
+                           size_t len)
 {
     const char *s = t->v.str + 1;
     size_t n = strlen(s);
-    if (s[0] == '{') {
+    int braces = s[0] == '{';
+    if (braces) {
         if (s[1] == '{')
             return UMP_FAIL(p->err, UMP_ERR_UNSUPPORTED,
                             "%s:%d: expressions ${{...}} are not supported", t->file, t->line);
@@ -396,9 +429,53 @@ static ump_status var_name(parser *p, const foam_token *t, char *buf, size_t len
     if (n == 0 || n >= len)
         return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: bad variable name '%s'", t->file,
                         t->line, t->v.str);
-    memcpy(buf, s, n);
-    buf[n] = '\0';
+    if (!braces || !memchr(s, '$', n)) {
+        memcpy(buf, s, n);
+        buf[n] = '\0';
+        return UMP_OK;
+    }
+    size_t o = 0, i = 0;
+    while (i < n) {
+        if (s[i] != '$') {
+            if (o + 1 >= len)
+                goto toolong;
+            buf[o++] = s[i++];
+            continue;
+        }
+        char inner[256], val[1024];
+        size_t k = 0;
+        i++;
+        int br = i < n && s[i] == '{';
+        if (br)
+            i++;
+        while (i < n && k + 1 < sizeof inner &&
+               (br ? s[i] != '}' : (s[i] != '$' && s[i] != '{' && s[i] != '}')))
+            inner[k++] = s[i++];
+        if (br && i < n && s[i] == '}')
+            i++;
+        inner[k] = '\0';
+        const foam_entry *e = k ? resolve_var(ctx, inner, 0) : NULL;
+        const char *env = !e && k ? getenv(inner) : NULL;
+        if (e ? !entry_word(e, val, sizeof val) : !env)
+            return UMP_FAIL(p->err, UMP_ERR_PARSE,
+                            "%s:%d: undefined or non-word variable $%s in %s", t->file, t->line,
+                            inner, t->v.str);
+        if (!e)
+            snprintf(val, sizeof val, "%s", env);
+        size_t vl = strlen(val);
+        if (o + vl >= len)
+            goto toolong;
+        memcpy(buf + o, val, vl);
+        o += vl;
+    }
+    buf[o] = '\0';
+    if (o == 0)
+        return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: bad variable name '%s'", t->file,
+                        t->line, t->v.str);
     return UMP_OK;
+toolong:
+    return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: variable name too long in '%s'", t->file,
+                    t->line, t->v.str);
 }
 
 static int env_name_ok(const char *s)
@@ -417,8 +494,8 @@ static int env_name_ok(const char *s)
 static ump_status expand_var(parser *p, foam_dict *ctx, const foam_token *t)
 {
     char name[1024];
-    UMP_CALL(var_name(p, t, name, sizeof name));
-    const foam_entry *e = resolve_var(ctx, name);
+    UMP_CALL(var_name(p, ctx, t, name, sizeof name));
+    const foam_entry *e = resolve_var(ctx, name, 0);
     if (e && e->dict) {
         ump_status rc;
         foam_dict *c = dict_copy(p, e->dict, ctx, t, &rc);
@@ -582,7 +659,7 @@ static ump_status expand_name(parser *p, foam_dict *ctx, const foam_token *t, ch
             APPEND(cd, strlen(cd));
             continue;
         }
-        const foam_entry *e = resolve_var(ctx, name);
+        const foam_entry *e = resolve_var(ctx, name, 0);
         if (e && !e->dict && e->ntok == 1 &&
             (e->tok[0].type == FOAM_TOK_WORD || e->tok[0].type == FOAM_TOK_STRING)) {
             APPEND(e->tok[0].v.str, strlen(e->tok[0].v.str));
@@ -782,8 +859,7 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
                 return UMP_FAIL(p->err, UMP_ERR_PARSE,
                                 "%s:%d: expected '%c' closing '%c' opened at line %d, found end "
                                 "of file",
-                                lx->file, t.line, open[depth - 1] == '(' ? ')' :
-                                open[depth - 1] == '[' ? ']' : '}', open[depth - 1],
+                                lx->file, t.line, open[depth - 1] == '(' ? ')' : '}', open[depth - 1],
                                 openline[depth - 1]);
             if (mode == MODE_ENTRY)
                 return UMP_FAIL(p->err, UMP_ERR_PARSE,
@@ -796,7 +872,7 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
             char c = t.v.punct;
             if (c == ';' && depth == 0 && mode == MODE_ENTRY)
                 return UMP_OK;
-            if (c == '(' || c == '[' ||
+            if (c == '(' ||
                 (c == '{' && p->nstk > base && p->stk[p->nstk - 1].type == FOAM_TOK_LABEL)) {
                 /* '{' after a count: uniform list N{v} */
                 if (depth >= MAX_PAREN_DEPTH)
@@ -812,8 +888,9 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
                 UMP_CALL(parse_block(p, lx, ctx, nm, t.line, &sub));
                 t.type = FOAM_TOK_DICT;
                 t.v.dict = sub;
-            } else if (c == ')' || c == ']' || c == '}') {
-                char want = c == ')' ? '(' : c == ']' ? '[' : '{';
+            } else if (c == ')' || c == '}') {
+                /* like v1912's primitiveEntry, only ( ) and { } must balance */
+                char want = c == ')' ? '(' : '{';
                 if (depth == 0 || open[depth - 1] != want) {
                     if (depth == 0 && c == '}' && mode == MODE_ENTRY)
                         return UMP_FAIL(p->err, UMP_ERR_PARSE,
@@ -828,8 +905,7 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
                                     "%s:%d: expected '%c' closing '%c' opened at line %d, "
                                     "found '%c'",
                                     t.file, t.line,
-                                    open[depth - 1] == '(' ? ')' :
-                                    open[depth - 1] == '[' ? ']' : '}',
+                                    open[depth - 1] == '(' ? ')' : '}',
                                     open[depth - 1], openline[depth - 1], c);
                 }
                 depth--;
@@ -967,8 +1043,8 @@ static ump_status directive_dict(parser *p, foam_lexer *lx, foam_dict *d, const 
 static ump_status var_keyword(parser *p, foam_lexer *lx, foam_dict *d, const foam_token *t)
 {
     char name[1024];
-    UMP_CALL(var_name(p, t, name, sizeof name));
-    const foam_entry *e = resolve_var(d, name);
+    UMP_CALL(var_name(p, d, t, name, sizeof name));
+    const foam_entry *e = resolve_var(d, name, 1);
     foam_token nt;
     UMP_CALL(lex_peek(lx, &nt));
     if (nt.type == FOAM_TOK_PUNCT && nt.v.punct == '{') {
