@@ -437,12 +437,25 @@ ump_status lex_next(foam_lexer *lx, foam_token *t)
     if (c == '#') {
         if (next == '{')
             return lex_verbatim(lx, t);
-        if (next < 0 || !is_word_char(next))
+        /* ISstream reads the next non-blank character: "# include" works */
+        lx->pos++;
+        UMP_CALL(skip_blank(lx));
+        size_t q = lx->pos;
+        int nc = q < lx->len ? (unsigned char)b[q] : -1;
+        if (nc < 0 || !is_word_char(nc) || nc == '#')
             return UMP_FAIL(lx->err, UMP_ERR_PARSE,
-                            "%s:%d: expected a directive name after '#'", lx->file, lx->line);
-        size_t e = scan_word(lx, p + 1, 0);
+                            "%s:%d: expected a directive name after '#'", lx->file, t->line);
+        size_t e = scan_word(lx, q, 0);
+        char *w = arena_alloc(lx->arena, e - q + 2, 1);
+        if (!w)
+            return nomem(lx);
+        w[0] = '#';
+        memcpy(w + 1, b + q, e - q);
+        w[e - q + 1] = '\0';
+        t->type = FOAM_TOK_WORD;
+        t->v.str = w;
         lx->pos = e;
-        return make_word(lx, p, e, t);
+        return UMP_OK;
     }
     if (c == '$') {
         if (next == '{') {

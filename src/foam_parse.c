@@ -456,12 +456,14 @@ static ump_status var_name(parser *p, foam_dict *ctx, const foam_token *t, char 
         inner[k] = '\0';
         const foam_entry *e = k ? resolve_var(ctx, inner, 0) : NULL;
         const char *env = !e && k ? getenv(inner) : NULL;
-        if (e ? !entry_word(e, val, sizeof val) : !env)
+        if (e && !entry_word(e, val, sizeof val))
             return UMP_FAIL(p->err, UMP_ERR_PARSE,
-                            "%s:%d: undefined or non-word variable $%s in %s", t->file, t->line,
+                            "%s:%d: variable $%s in %s is not a single word", t->file, t->line,
                             inner, t->v.str);
+        /* undefined: empty, as stringOps::inplaceExpand (then the outer
+         * look-up fails: an error in a value, ignored as a keyword) */
         if (!e)
-            snprintf(val, sizeof val, "%s", env);
+            snprintf(val, sizeof val, "%s", env ? env : "");
         size_t vl = strlen(val);
         if (o + vl >= len)
             goto toolong;
@@ -469,9 +471,6 @@ static ump_status var_name(parser *p, foam_dict *ctx, const foam_token *t, char 
         o += vl;
     }
     buf[o] = '\0';
-    if (o == 0)
-        return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: bad variable name '%s'", t->file,
-                        t->line, t->v.str);
     return UMP_OK;
 toolong:
     return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: variable name too long in '%s'", t->file,
@@ -1445,9 +1444,42 @@ void foam_file_free(foam_file **fp)
     *fp = NULL;
 }
 
+/* Intervals such as (a{100}){100} make regcomp build huge automata; real
+ * OpenFOAM keys never need that, so bound the product of interval counts
+ * (and the length) and treat anything beyond as "no match". */
+static int pattern_too_costly(const char *pat, size_t n)
+{
+    if (n > 1024)
+        return 1;
+    double cost = 1;
+    for (const char *s = pat; *s; s++) {
+        if (*s != '{')
+            continue;
+        long hi = 0;
+        const char *q = s + 1;
+        while (*q && *q != '}') {
+            if (*q >= '0' && *q <= '9') {
+                long v = 0;
+                while (*q >= '0' && *q <= '9' && v < 100000)
+                    v = v * 10 + (*q++ - '0');
+                if (v > hi)
+                    hi = v;
+            } else {
+                q++;
+            }
+        }
+        cost *= (double)(hi + 1);
+        if (cost > 1000)
+            return 1;
+    }
+    return 0;
+}
+
 int pattern_match(const char *pattern, const char *key)
 {
     size_t n = strlen(pattern);
+    if (pattern_too_costly(pattern, n))
+        return 0;
     char *re = ump_alloc_array(n + 5, 1);
     if (!re)
         return 0;
