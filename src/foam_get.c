@@ -99,6 +99,9 @@ const char *foam_tok_str(const foam_token *t, char *buf, size_t len)
         snprintf(buf, len, "token of unknown type");
         break;
     }
+    for (char *c = buf; *c; c++)
+        if ((unsigned char)*c < 32 || *c == 127)
+            *c = ' ';
     return buf;
 }
 
@@ -130,7 +133,7 @@ static ump_status fail_at(ump_err *err, ump_status code, const foam_token *tok, 
         snprintf(t, sizeof t, "end of entry (after line %d)", tok[nt - 1].line);
     else
         snprintf(t, sizeof t, "nothing");
-    return UMP_FAIL(err, code, "%s: %s: expected %s, found %s", w, what ? what : "value",
+    return FOAM_FAIL(err, code, "%s: %s: expected %s, found %s", w, what ? what : "value",
                     expected, t);
 }
 
@@ -237,7 +240,7 @@ static ump_status nomem_at(ump_err *err, const foam_token *tok, size_t nt, size_
 {
     char w[512];
     foam_tok_where(tok, nt, pos, NULL, w, sizeof w);
-    return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: %s: out of memory", w, what ? what : "list");
+    return FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: %s: out of memory", w, what ? what : "list");
 }
 
 /* ---- list headers ------------------------------------------------------------- */
@@ -417,7 +420,7 @@ ump_status foam_tok_scalar_list(const foam_token *tok, size_t nt, size_t *pos, i
     *out = NULL;
     *n = 0;
     if (ncomp < 1 || ncomp > 9)
-        return UMP_FAIL(err, UMP_ERR_INPUT, "%s: bad component count %d", what ? what : "list",
+        return FOAM_FAIL(err, UMP_ERR_INPUT, "%s: bad component count %d", what ? what : "list",
                         ncomp);
     dvec d = {0};
     size_t p = *pos, ne = 0;
@@ -445,7 +448,7 @@ static ump_status label_fits(const foam_token *tok, size_t nt, size_t pos, int64
     if (v < INT32_MIN || v > UMP_IDX_MAX) {
         char w[512];
         foam_tok_where(tok, nt, pos, NULL, w, sizeof w);
-        return UMP_FAIL(err, UMP_ERR_INPUT, "%s: %s: label %lld out of range", w,
+        return FOAM_FAIL(err, UMP_ERR_INPUT, "%s: %s: label %lld out of range", w,
                         what ? what : "list", (long long)v);
     }
     return UMP_OK;
@@ -592,7 +595,7 @@ static ump_status compact_lists(const foam_token *tok, size_t nt, size_t *pos, u
         free(it);
         char w[512];
         foam_tok_where(tok, nt, *pos, NULL, w, sizeof w);
-        return UMP_FAIL(err, UMP_ERR_INPUT, "%s: %s: compact list: expected %s", w,
+        return FOAM_FAIL(err, UMP_ERR_INPUT, "%s: %s: compact list: expected %s", w,
                         what ? what : "list", bad);
     }
     *offs = o;
@@ -688,7 +691,7 @@ static ump_status missing(const foam_dict *d, const char *key, ump_err *err)
 {
     char path[512];
     foam_dict_path(d, path, sizeof path);
-    return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: keyword '%s' is missing in %s%s%s",
+    return FOAM_FAIL(err, UMP_ERR_INPUT, "%s:%d: keyword '%s' is missing in %s%s%s",
                     d && d->file ? d->file : "?", d ? d->line : 0, key,
                     path[0] ? "dictionary '" : "the top-level dictionary", path,
                     path[0] ? "'" : "");
@@ -700,7 +703,7 @@ static ump_status primitive(const foam_dict *d, const char *key, const foam_entr
 {
     *e = foam_dict_find(d, key, 0);
     if (*e && (*e)->dict)
-        return UMP_FAIL(err, UMP_ERR_PARSE, "%s:%d: keyword '%s': expected a value, found a "
+        return FOAM_FAIL(err, UMP_ERR_PARSE, "%s:%d: keyword '%s': expected a value, found a "
                         "dictionary", (*e)->file, (*e)->line, key);
     return UMP_OK;
 }
@@ -713,7 +716,7 @@ static ump_status entry_error(const foam_entry *e, const char *key, const char *
         snprintf(t, sizeof t, "nothing");
     else
         foam_tok_str(&e->tok[0], t, sizeof t);
-    return UMP_FAIL(err, UMP_ERR_PARSE, "%s:%d: keyword '%s': expected %s, found %s%s", e->file,
+    return FOAM_FAIL(err, UMP_ERR_PARSE, "%s:%d: keyword '%s': expected %s, found %s%s", e->file,
                     e->line, key, expected, t, e->ntok > 1 ? " ..." : "");
 }
 

@@ -13,6 +13,11 @@
 #include <stdint.h>
 #include "umppm/foam.h"
 
+/* Messages quote input (a string may hold an escaped newline): keep them
+ * one line by turning control characters into blanks. */
+ump_status foam_oneline(ump_err *err, ump_status rc);
+#define FOAM_FAIL(err, code, ...) foam_oneline((err), UMP_FAIL((err), (code), __VA_ARGS__))
+
 /* ---- arena --------------------------------------------------------------- */
 typedef struct foam_arena foam_arena;
 

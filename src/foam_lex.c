@@ -16,6 +16,15 @@
 #include <sys/stat.h>
 #include <zlib.h>
 
+ump_status foam_oneline(ump_err *err, ump_status rc)
+{
+    if (err && rc != UMP_OK)
+        for (char *c = err->msg; *c; c++)
+            if ((unsigned char)*c < 32 || *c == 127)
+                *c = ' ';
+    return rc;
+}
+
 /* ---- arena --------------------------------------------------------------- */
 
 /* Blocks are allocated with this many bytes of payload; larger requests get
@@ -202,7 +211,7 @@ static ump_status skip_blank(foam_lexer *lx)
                 if (i + 1 >= n) {
                     lx->pos = n;
                     lx->line = line;
-                    return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                    return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                                     "%s:%d: unterminated /* comment, found end of file",
                                     lx->file, start);
                 }
@@ -225,7 +234,7 @@ static ump_status skip_blank(foam_lexer *lx)
 
 static ump_status nomem(foam_lexer *lx)
 {
-    return UMP_FAIL(lx->err, UMP_ERR_NOMEM, "%s:%d: out of memory", lx->file, lx->line);
+    return FOAM_FAIL(lx->err, UMP_ERR_NOMEM, "%s:%d: out of memory", lx->file, lx->line);
 }
 
 static ump_status make_word(foam_lexer *lx, size_t start, size_t end, foam_token *t)
@@ -284,7 +293,7 @@ static ump_status lex_string(foam_lexer *lx, foam_token *t)
             escaped = 0;
         } else if (c == '\n') {
             if (!escaped)
-                return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                                 "%s:%d: unterminated string (newline inside \"...\")",
                                 lx->file, start_line);
             escaped = 0;
@@ -293,7 +302,7 @@ static ump_status lex_string(foam_lexer *lx, foam_token *t)
         }
     }
     if (!found)
-        return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+        return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                         "%s:%d: unterminated string, found end of file", lx->file,
                         start_line);
     char *s = arena_alloc(lx->arena, end - lx->pos, 1);
@@ -342,7 +351,7 @@ static ump_status lex_verbatim(foam_lexer *lx, foam_token *t)
         if (b[i] == '\n')
             line++;
     }
-    return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+    return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                     "%s:%d: unterminated #{ verbatim block, found end of file", lx->file,
                     lx->line);
 }
@@ -364,7 +373,7 @@ static ump_status lex_number(foam_lexer *lx, foam_token *t)
         return UMP_OK;
     }
     if (len >= 128)
-        return UMP_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: number too long (%zu characters)",
+        return FOAM_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: number too long (%zu characters)",
                         lx->file, lx->line, len);
     int neg = b[s] == '-';
     int aslabel = b[s] != '.' && len > (size_t)neg;
@@ -443,7 +452,7 @@ ump_status lex_next(foam_lexer *lx, foam_token *t)
         size_t q = lx->pos;
         int nc = q < lx->len ? (unsigned char)b[q] : -1;
         if (nc < 0 || !is_word_char(nc) || nc == '#')
-            return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                             "%s:%d: expected a directive name after '#'", lx->file, t->line);
         size_t e = scan_word(lx, q, 0);
         char *w = arena_alloc(lx->arena, e - q + 2, 1);
@@ -471,24 +480,24 @@ ump_status lex_next(foam_lexer *lx, foam_token *t)
                     break;
             }
             if (i >= lx->len || b[i] != '}')
-                return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                                 "%s:%d: expected '}' closing '${', found %s", lx->file,
                                 lx->line, i >= lx->len ? "end of file" : "end of line");
             lx->pos = i + 1;
             return make_word(lx, p, i + 1, t);
         }
         if (next < 0 || !(is_word_char(next) || next == '/'))
-            return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                             "%s:%d: expected a variable name after '$'", lx->file, lx->line);
         size_t e = scan_word(lx, p + 1, 1);
         if (e == p + 1)
-            return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                             "%s:%d: expected a variable name after '$'", lx->file, lx->line);
         lx->pos = e;
         return make_word(lx, p, e, t);
     }
     if (!is_word_char(c))
-        return UMP_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: unexpected character '%c'",
+        return FOAM_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: unexpected character '%c'",
                         lx->file, lx->line, c);
     size_t e = scan_word(lx, p, 0);
     lx->pos = e;
@@ -542,10 +551,10 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
                     foam_token *out)
 {
     if (lx->has_back)
-        return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+        return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                         "%s:%d: internal error: binary list after look-ahead", lx->file, line);
     if (n < 0)
-        return UMP_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: negative list size %lld",
+        return FOAM_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: negative list size %lld",
                         lx->file, line, (long long)n);
     memset(out, 0, sizeof *out);
     out->type = FOAM_TOK_BLOB;
@@ -564,7 +573,7 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
             lx->pos++;
             UMP_CALL(lex_peek_char(lx, &c));
             if (c != ')')
-                return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                                 "%s:%d: expected ')' closing empty list, found %s",
                                 lx->file, lx->line, c < 0 ? "end of file" : "other data");
             lx->pos++;
@@ -572,7 +581,7 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
         return UMP_OK;
     }
     if (c != '(')
-        return UMP_FAIL(lx->err, c < 0 ? UMP_ERR_IO : UMP_ERR_PARSE,
+        return FOAM_FAIL(lx->err, c < 0 ? UMP_ERR_IO : UMP_ERR_PARSE,
                         "%s:%d: expected '(' starting binary list of %lld elements, found %s",
                         lx->file, lx->line, (long long)n,
                         c < 0 ? "end of file (file cut short)" : "other data");
@@ -581,7 +590,7 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
     size_t avail = lx->len - lx->pos;
     size_t per = (size_t)csize * (size_t)ncomp;
     if ((uint64_t)n > (uint64_t)(avail / per))
-        return UMP_FAIL(lx->err, UMP_ERR_IO,
+        return FOAM_FAIL(lx->err, UMP_ERR_IO,
                         "%s:%d: binary list of %lld elements cut short (%zu bytes left, "
                         "%d-byte components)",
                         lx->file, line, (long long)n, avail, csize);
@@ -630,7 +639,7 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
     out->v.blob.data = data;
     UMP_CALL(lex_peek_char(lx, &c));
     if (c != ')')
-        return UMP_FAIL(lx->err, c < 0 ? UMP_ERR_IO : UMP_ERR_PARSE,
+        return FOAM_FAIL(lx->err, c < 0 ? UMP_ERR_IO : UMP_ERR_PARSE,
                         "%s:%d: expected ')' after binary list of %lld elements, found %s",
                         lx->file, lx->line, (long long)n,
                         c < 0 ? "end of file (file cut short)" : "other data");
@@ -695,26 +704,26 @@ ump_status read_whole_file(const char *path, char **out, size_t *outlen, ump_err
     *outlen = 0;
     gzFile gz = gzopen(path, "rb");
     if (!gz)
-        return UMP_FAIL(err, UMP_ERR_IO, "cannot open %s: %s", path,
+        return FOAM_FAIL(err, UMP_ERR_IO, "cannot open %s: %s", path,
                         errno ? strerror(errno) : "gzopen failed");
     size_t cap = 1 << 16, len = 0;
     char *buf = ump_alloc_array(cap, 1);
     if (!buf) {
         gzclose(gz);
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+        return FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
     }
     for (;;) {
         if (cap - len < 2) {
             if (cap > SIZE_MAX / 2) {
                 free(buf);
                 gzclose(gz);
-                return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: file too large", path);
+                return FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: file too large", path);
             }
             char *nb = ump_realloc_array(buf, cap * 2, 1);
             if (!nb) {
                 free(buf);
                 gzclose(gz);
-                return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+                return FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
             }
             buf = nb;
             cap *= 2;
@@ -726,11 +735,11 @@ ump_status read_whole_file(const char *path, char **out, size_t *outlen, ump_err
         if (got < 0) {
             int zerr;
             const char *msg = gzerror(gz, &zerr);
-            UMP_FAIL(err, UMP_ERR_IO, "cannot read %s: %s", path,
-                     zerr == Z_ERRNO ? strerror(errno) : msg);
+            ump_status rc = FOAM_FAIL(err, UMP_ERR_IO, "cannot read %s: %s", path,
+                                      zerr == Z_ERRNO ? strerror(errno) : msg);
             free(buf);
             gzclose(gz);
-            return err ? err->code : UMP_ERR_IO;
+            return rc;
         }
         if (got == 0)
             break;
@@ -743,7 +752,7 @@ ump_status read_whole_file(const char *path, char **out, size_t *outlen, ump_err
     int rc = gzclose_r(gz);
     if ((zerr != Z_OK && zerr != Z_STREAM_END) || rc == Z_BUF_ERROR || rc == Z_ERRNO) {
         free(buf);
-        return UMP_FAIL(err, UMP_ERR_IO, "cannot read %s: %s", path,
+        return FOAM_FAIL(err, UMP_ERR_IO, "cannot read %s: %s", path,
                         rc == Z_BUF_ERROR ? "compressed data cut short" : "read error");
     }
     buf[len] = '\0';

@@ -39,12 +39,13 @@ enum { MODE_ENTRY, MODE_EOF };
 
 static ump_status parse_entries(parser *p, foam_lexer *lx, foam_dict *d, int until_brace,
                                 int is_include, int open_line);
+static int pattern_compile(const char *pattern, regex_t *rx);
 static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mode,
                                const char *key, int keyline);
 
 static ump_status oom(parser *p, const char *file, int line)
 {
-    return UMP_FAIL(p->err, UMP_ERR_NOMEM, "%s:%d: out of memory", file, line);
+    return FOAM_FAIL(p->err, UMP_ERR_NOMEM, "%s:%d: out of memory", file, line);
 }
 
 static void tokstr(const foam_token *t, char *buf, size_t len)
@@ -58,7 +59,7 @@ static void tokstr(const foam_token *t, char *buf, size_t len)
 static ump_status spend(parser *p, size_t n, const foam_token *where)
 {
     if (n > p->budget)
-        return UMP_FAIL(p->err, UMP_ERR_INPUT,
+        return FOAM_FAIL(p->err, UMP_ERR_INPUT,
                         "%s:%d: macro expansion too large (recursive or exponential $var use?)",
                         where->file, where->line);
     p->budget -= n;
@@ -166,7 +167,7 @@ static ump_status dict_append(parser *p, foam_dict *d, const foam_entry *e)
 {
     dict_impl *di = (dict_impl *)d;
     if (d->n >= UINT32_MAX - 1)
-        return UMP_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: too many entries", e->file, e->line);
+        return FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: too many entries", e->file, e->line);
     if (d->n == d->cap) {
         size_t nc = d->cap ? d->cap * 2 : 8;
         foam_entry *ne = arena_alloc(p->a, nc, sizeof *ne);
@@ -191,16 +192,6 @@ static ump_status dict_append(parser *p, foam_dict *d, const foam_entry *e)
     return UMP_OK;
 }
 
-static void dict_remove_at(parser *p, foam_dict *d, size_t i)
-{
-    dict_impl *di = (dict_impl *)d;
-    if (d->e[i].is_pattern)
-        di->npat--;
-    memmove(d->e + i, d->e + i + 1, (d->n - i - 1) * sizeof *d->e);
-    d->n--;
-    if (!rebuild_index(p, di))
-        di->hcap = 0; /* fall back to linear search */
-}
 
 static ump_status dict_merge(parser *p, foam_dict *dst, foam_dict *src);
 
@@ -232,7 +223,7 @@ static ump_status dict_add(parser *p, foam_dict *d, foam_entry *e)
 static ump_status dict_merge(parser *p, foam_dict *dst, foam_dict *src)
 {
     if (++p->depth > MAX_DICT_DEPTH)
-        return UMP_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: dictionaries nested too deeply",
+        return FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: dictionaries nested too deeply",
                         src->file, src->line);
     for (size_t i = 0; i < src->n; i++) {
         foam_entry e = src->e[i];
@@ -252,7 +243,7 @@ static foam_dict *dict_copy(parser *p, const foam_dict *src, foam_dict *parent,
 {
     *rc = UMP_OK;
     if (++p->depth > MAX_DICT_DEPTH) {
-        *rc = UMP_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: dictionaries nested too deeply",
+        *rc = FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: dictionaries nested too deeply",
                        where->file, where->line);
         return NULL;
     }
@@ -421,13 +412,13 @@ static ump_status var_name(parser *p, foam_dict *ctx, const foam_token *t, char 
     int braces = s[0] == '{';
     if (braces) {
         if (s[1] == '{')
-            return UMP_FAIL(p->err, UMP_ERR_UNSUPPORTED,
+            return FOAM_FAIL(p->err, UMP_ERR_UNSUPPORTED,
                             "%s:%d: expressions ${{...}} are not supported", t->file, t->line);
         s++;
         n -= 2; /* lexer guarantees the closing '}' */
     }
     if (n == 0 || n >= len)
-        return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: bad variable name '%s'", t->file,
+        return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: bad variable name '%s'", t->file,
                         t->line, t->v.str);
     if (!braces || !memchr(s, '$', n)) {
         memcpy(buf, s, n);
@@ -457,7 +448,7 @@ static ump_status var_name(parser *p, foam_dict *ctx, const foam_token *t, char 
         const foam_entry *e = k ? resolve_var(ctx, inner, 0) : NULL;
         const char *env = !e && k ? getenv(inner) : NULL;
         if (e && !entry_word(e, val, sizeof val))
-            return UMP_FAIL(p->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                             "%s:%d: variable $%s in %s is not a single word", t->file, t->line,
                             inner, t->v.str);
         /* undefined: empty, as stringOps::inplaceExpand (then the outer
@@ -473,7 +464,7 @@ static ump_status var_name(parser *p, foam_dict *ctx, const foam_token *t, char 
     buf[o] = '\0';
     return UMP_OK;
 toolong:
-    return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: variable name too long in '%s'", t->file,
+    return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: variable name too long in '%s'", t->file,
                     t->line, t->v.str);
 }
 
@@ -513,7 +504,7 @@ static ump_status expand_var(parser *p, foam_dict *ctx, const foam_token *t)
     }
     const char *env = env_name_ok(name) ? getenv(name) : NULL;
     if (!env || !*env)
-        return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: undefined variable $%s", t->file,
+        return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: undefined variable $%s", t->file,
                         t->line, name);
     /* OpenFOAM tokenizes the environment value */
     foam_lexer el;
@@ -600,7 +591,7 @@ static ump_status expand_name(parser *p, foam_dict *ctx, const foam_token *t, ch
 #define APPEND(str_, n_) do { \
         size_t n__ = (n_); \
         if (o + n__ >= len) \
-            return UMP_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: file name too long", t->file, t->line); \
+            return FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: file name too long", t->file, t->line); \
         memcpy(out + o, (str_), n__); o += n__; out[o] = '\0'; \
     } while (0)
     static const char *const tags[] = {"<case>", "<system>", "<constant>"};
@@ -637,7 +628,7 @@ static ump_status expand_name(parser *p, foam_dict *ctx, const foam_token *t, ch
             while (nm[n] && nm[n] != '}')
                 n++;
             if (!nm[n])
-                return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected '}' in file name '%s'",
+                return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected '}' in file name '%s'",
                                 t->file, t->line, t->v.str);
         } else {
             while ((nm[n] >= 'a' && nm[n] <= 'z') || (nm[n] >= 'A' && nm[n] <= 'Z') ||
@@ -666,7 +657,7 @@ static ump_status expand_name(parser *p, foam_dict *ctx, const foam_token *t, ch
         }
         const char *env = getenv(name);
         if (!env)
-            return UMP_FAIL(p->err, UMP_ERR_INPUT,
+            return FOAM_FAIL(p->err, UMP_ERR_INPUT,
                             "%s:%d: undefined variable $%s in file name '%s'", t->file, t->line,
                             name, t->v.str);
         APPEND(env, strlen(env));
@@ -734,14 +725,14 @@ static ump_status include_open(parser *p, foam_lexer *lx, foam_dict *ctx,
     if (nt.type != FOAM_TOK_STRING && nt.type != FOAM_TOK_WORD) {
         char tb[128];
         tokstr(&nt, tb, sizeof tb);
-        return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected a file name after %s, found %s",
+        return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected a file name after %s, found %s",
                         dtok->file, dtok->line, dn, tb);
     }
     if (p->flags & FOAM_PARSE_NO_INCLUDE)
-        return UMP_FAIL(p->err, UMP_ERR_UNSUPPORTED, "%s:%d: %s is disabled here", dtok->file,
+        return FOAM_FAIL(p->err, UMP_ERR_UNSUPPORTED, "%s:%d: %s is disabled here", dtok->file,
                         dtok->line, dn);
     if (p->incl_depth >= MAX_INCLUDE_DEPTH)
-        return UMP_FAIL(p->err, UMP_ERR_INPUT,
+        return FOAM_FAIL(p->err, UMP_ERR_INPUT,
                         "%s:%d: %s \"%s\": includes nested too deeply (recursive include?)",
                         dtok->file, dtok->line, dn, nt.v.str);
     char tried[8400];
@@ -751,9 +742,9 @@ static ump_status include_open(parser *p, foam_lexer *lx, foam_dict *ctx,
         if (optional)
             return UMP_OK;
         if (etc)
-            return UMP_FAIL(p->err, UMP_ERR_IO, "%s:%d: #includeEtc: cannot find %s",
+            return FOAM_FAIL(p->err, UMP_ERR_IO, "%s:%d: #includeEtc: cannot find %s",
                             dtok->file, dtok->line, tried);
-        return UMP_FAIL(p->err, UMP_ERR_IO, "%s:%d: %s: cannot open %s (nor %s.gz)",
+        return FOAM_FAIL(p->err, UMP_ERR_IO, "%s:%d: %s: cannot open %s (nor %s.gz)",
                         dtok->file, dtok->line, dn, tried, tried);
     }
     src->file = arena_strndup(p->a, path, strlen(path));
@@ -766,7 +757,7 @@ static ump_status include_open(parser *p, foam_lexer *lx, foam_dict *ctx,
     ump_status rc = read_whole_file(path, &src->buf, &src->len, &sub);
     free(path);
     if (rc != UMP_OK)
-        return UMP_FAIL(p->err, rc, "%s:%d: %s: %s", dtok->file, dtok->line, dn, sub.msg);
+        return FOAM_FAIL(p->err, rc, "%s:%d: %s: %s", dtok->file, dtok->line, dn, sub.msg);
     size_t extra = src->len > SIZE_MAX / 32 ? SIZE_MAX / 2 : src->len * 16;
     p->budget = p->budget > SIZE_MAX - extra ? SIZE_MAX : p->budget + extra;
     return UMP_OK;
@@ -814,7 +805,7 @@ static int is_include_directive(const char *s)
 
 static ump_status unsupported_directive(parser *p, const foam_token *t)
 {
-    return UMP_FAIL(p->err, UMP_ERR_UNSUPPORTED,
+    return FOAM_FAIL(p->err, UMP_ERR_UNSUPPORTED,
                     "%s:%d: directive %s is not supported (umppmFoam evaluates no code "
                     "or expressions)",
                     t->file, t->line, t->v.str);
@@ -826,7 +817,7 @@ static ump_status parse_block(parser *p, foam_lexer *lx, foam_dict *parent, cons
                               int line, foam_dict **out)
 {
     if (p->depth >= MAX_DICT_DEPTH)
-        return UMP_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: dictionaries nested too deeply",
+        return FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: dictionaries nested too deeply",
                         lx->file, line);
     foam_dict *d = new_dict(p, parent, name, lx->file, line);
     if (!d)
@@ -855,13 +846,13 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
         UMP_CALL(lex_next(lx, &t));
         if (lex_is_eof(&t)) {
             if (depth > 0)
-                return UMP_FAIL(p->err, UMP_ERR_PARSE,
+                return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                 "%s:%d: expected '%c' closing '%c' opened at line %d, found end "
                                 "of file",
                                 lx->file, t.line, open[depth - 1] == '(' ? ')' : '}', open[depth - 1],
                                 openline[depth - 1]);
             if (mode == MODE_ENTRY)
-                return UMP_FAIL(p->err, UMP_ERR_PARSE,
+                return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                 "%s:%d: expected ';' ending entry '%s' (line %d), found end "
                                 "of file",
                                 lx->file, t.line, key, keyline);
@@ -875,7 +866,7 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
                 (c == '{' && p->nstk > base && p->stk[p->nstk - 1].type == FOAM_TOK_LABEL)) {
                 /* '{' after a count: uniform list N{v} */
                 if (depth >= MAX_PAREN_DEPTH)
-                    return UMP_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: lists nested too deeply",
+                    return FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: lists nested too deeply",
                                     t.file, t.line);
                 open[depth] = c;
                 openline[depth++] = t.line;
@@ -892,15 +883,15 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
                 char want = c == ')' ? '(' : '{';
                 if (depth == 0 || open[depth - 1] != want) {
                     if (depth == 0 && c == '}' && mode == MODE_ENTRY)
-                        return UMP_FAIL(p->err, UMP_ERR_PARSE,
+                        return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                         "%s:%d: expected ';' ending entry '%s' (line %d), "
                                         "found '}'",
                                         t.file, t.line, key, keyline);
                     if (depth == 0)
-                        return UMP_FAIL(p->err, UMP_ERR_PARSE,
+                        return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                         "%s:%d: unexpected '%c' (no matching '%c')", t.file,
                                         t.line, c, want);
-                    return UMP_FAIL(p->err, UMP_ERR_PARSE,
+                    return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                     "%s:%d: expected '%c' closing '%c' opened at line %d, "
                                     "found '%c'",
                                     t.file, t.line,
@@ -960,8 +951,34 @@ static ump_status take_tokens(parser *p, size_t base, foam_entry *e)
 
 /* ---- directives in a dictionary --------------------------------------------- */
 
-static ump_status directive_remove(parser *p, foam_lexer *lx, foam_dict *d,
-                                   const foam_token *dt)
+/* Remove every entry whose key equals text or, for a quoted name, matches
+ * it as a pattern: one pass and one index rebuild, whatever the count. */
+static void remove_keys(parser *p, foam_dict *d, const char *text, int is_pattern)
+{
+    regex_t rx;
+    int have_rx = is_pattern && pattern_compile(text, &rx);
+    size_t o = 0;
+    dict_impl *di = (dict_impl *)d;
+    for (size_t i = 0; i < d->n; i++) {
+        const char *k = d->e[i].key;
+        int gone = strcmp(k, text) == 0 || (have_rx && regexec(&rx, k, 0, NULL, 0) == 0);
+        if (gone) {
+            if (d->e[i].is_pattern)
+                di->npat--;
+            continue;
+        }
+        d->e[o++] = d->e[i];
+    }
+    if (have_rx)
+        regfree(&rx);
+    if (o != d->n) {
+        d->n = o;
+        if (!rebuild_index(p, di))
+            di->hcap = 0; /* fall back to linear search */
+    }
+}
+
+static ump_status directive_remove(parser *p, foam_lexer *lx, foam_dict *d)
 {
     foam_token t;
     UMP_CALL(lex_next(lx, &t));
@@ -972,25 +989,17 @@ static ump_status directive_remove(parser *p, foam_lexer *lx, foam_dict *d,
             if (t.type == FOAM_TOK_PUNCT && t.v.punct == ')')
                 return UMP_OK;
         }
-        if (t.type == FOAM_TOK_WORD) {
-            long i = find_exact(d, t.v.str);
-            if (i >= 0)
-                dict_remove_at(p, d, (size_t)i);
-        } else if (t.type == FOAM_TOK_STRING) {
-            for (size_t i = d->n; i-- > 0;)
-                if (strcmp(d->e[i].key, t.v.str) == 0 || pattern_match(t.v.str, d->e[i].key))
-                    dict_remove_at(p, d, i);
-        } else {
+        if (t.type != FOAM_TOK_WORD && t.type != FOAM_TOK_STRING) {
             char tb[128];
             tokstr(&t, tb, sizeof tb);
-            return UMP_FAIL(p->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                             "%s:%d: #remove: expected a keyword%s, found %s", t.file, t.line,
                             list ? " or ')'" : " or '('", tb);
         }
+        remove_keys(p, d, t.v.str, t.type == FOAM_TOK_STRING);
         if (!list)
             return UMP_OK;
     }
-    (void)dt;
 }
 
 static ump_status directive_dict(parser *p, foam_lexer *lx, foam_dict *d, const foam_token *t)
@@ -999,14 +1008,14 @@ static ump_status directive_dict(parser *p, foam_lexer *lx, foam_dict *d, const 
     if (is_include_directive(dn))
         return include_entries(p, lx, d, t);
     if (strcmp(dn, "#remove") == 0)
-        return directive_remove(p, lx, d, t);
+        return directive_remove(p, lx, d);
     if (strcmp(dn, "#inputMode") == 0) {
         foam_token m;
         UMP_CALL(lex_next(lx, &m));
         if (m.type != FOAM_TOK_WORD) {
             char tb[128];
             tokstr(&m, tb, sizeof tb);
-            return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: #inputMode: expected a mode, found %s",
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: #inputMode: expected a mode, found %s",
                             t->file, t->line, tb);
         }
         return UMP_OK;
@@ -1017,7 +1026,7 @@ static ump_status directive_dict(parser *p, foam_lexer *lx, foam_dict *d, const 
         if (a.type != FOAM_TOK_WORD && a.type != FOAM_TOK_STRING) {
             char tb[128];
             tokstr(&a, tb, sizeof tb);
-            return UMP_FAIL(p->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                             "%s:%d: %s: expected a function name, found %s", t->file, t->line,
                             dn, tb);
         }
@@ -1049,7 +1058,7 @@ static ump_status var_keyword(parser *p, foam_lexer *lx, foam_dict *d, const foa
     if (nt.type == FOAM_TOK_PUNCT && nt.v.punct == '{') {
         if (!e || e->dict || e->ntok < 1 ||
             (e->tok[0].type != FOAM_TOK_WORD && e->tok[0].type != FOAM_TOK_STRING))
-            return UMP_FAIL(p->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                             "%s:%d: $%s used as a keyword must name a word entry", t->file,
                             t->line, name);
         (void)lex_next(lx, &nt);
@@ -1065,7 +1074,7 @@ static ump_status var_keyword(parser *p, foam_lexer *lx, foam_dict *d, const foa
     if (!e)
         return UMP_OK;
     if (!e->dict)
-        return UMP_FAIL(p->err, UMP_ERR_PARSE,
+        return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                         "%s:%d: $%s; merges a dictionary, but %s is a primitive entry "
                         "(%s:%d)",
                         t->file, t->line, name, name, e->file, e->line);
@@ -1086,7 +1095,7 @@ static ump_status parse_entries(parser *p, foam_lexer *lx, foam_dict *d, int unt
         UMP_CALL(lex_next(lx, &t));
         if (lex_is_eof(&t)) {
             if (until_brace)
-                return UMP_FAIL(p->err, UMP_ERR_PARSE,
+                return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                 "%s:%d: expected '}' closing dictionary '%s' opened at line %d, "
                                 "found end of file",
                                 lx->file, t.line, d->name, open_line);
@@ -1095,7 +1104,7 @@ static ump_status parse_entries(parser *p, foam_lexer *lx, foam_dict *d, int unt
         if (t.type == FOAM_TOK_PUNCT && t.v.punct == '}') {
             if (until_brace)
                 return UMP_OK;
-            return UMP_FAIL(p->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                             "%s:%d: expected a keyword, found '}' (no matching '{')", t.file,
                             t.line);
         }
@@ -1111,7 +1120,7 @@ static ump_status parse_entries(parser *p, foam_lexer *lx, foam_dict *d, int unt
         }
         if (t.type != FOAM_TOK_WORD && t.type != FOAM_TOK_STRING) {
             tokstr(&t, tb, sizeof tb);
-            return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected a keyword%s, found %s",
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected a keyword%s, found %s",
                             t.file, t.line, until_brace ? " or '}'" : "", tb);
         }
         foam_entry e;
@@ -1161,7 +1170,7 @@ static ump_status parse_arch(parser *p, const char *arch, const foam_entry *e)
         memcpy(item, s, n);
         item[n] = '\0';
         if (strcmp(item, "MSB") == 0)
-            return UMP_FAIL(p->err, UMP_ERR_UNSUPPORTED,
+            return FOAM_FAIL(p->err, UMP_ERR_UNSUPPORTED,
                             "%s:%d: big-endian (MSB) binary files are not supported", e->file,
                             e->line);
         if (strncmp(item, "label=", 6) == 0 || strncmp(item, "scalar=", 7) == 0) {
@@ -1169,7 +1178,7 @@ static ump_status parse_arch(parser *p, const char *arch, const foam_entry *e)
             const char *v = item + (is_label ? 6 : 7);
             int bits = strcmp(v, "32") == 0 ? 32 : strcmp(v, "64") == 0 ? 64 : 0;
             if (!bits)
-                return UMP_FAIL(p->err, UMP_ERR_UNSUPPORTED,
+                return FOAM_FAIL(p->err, UMP_ERR_UNSUPPORTED,
                                 "%s:%d: arch \"%s\": expected %s=32 or %s=64", e->file, e->line,
                                 arch, is_label ? "label" : "scalar", is_label ? "label" : "scalar");
             if (is_label)
@@ -1191,7 +1200,7 @@ static ump_status read_header(parser *p, foam_dict *h)
     long fi = find_exact(h, "format");
     if (fi >= 0) {
         if (!fmt || (strcmp(fmt, "ascii") != 0 && strcmp(fmt, "binary") != 0))
-            return UMP_FAIL(p->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                             "%s:%d: FoamFile format: expected ascii or binary", h->e[fi].file,
                             h->e[fi].line);
         f->binary = strcmp(fmt, "binary") == 0;
@@ -1207,7 +1216,7 @@ static ump_status read_header(parser *p, foam_dict *h)
     if (ai >= 0 && f->binary) {
         const char *arch = entry_text(h, "arch");
         if (!arch)
-            return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: FoamFile arch: expected a string",
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: FoamFile arch: expected a string",
                             h->e[ai].file, h->e[ai].line);
         UMP_CALL(parse_arch(p, arch, &h->e[ai]));
     }
@@ -1256,7 +1265,7 @@ static ump_status expect_count(parser *p, foam_lexer *lx, foam_token *t, const c
     if (t->type != FOAM_TOK_LABEL || t->v.label < 0) {
         char tb[128];
         tokstr(t, tb, sizeof tb);
-        return UMP_FAIL(p->err, lex_is_eof(t) ? UMP_ERR_IO : UMP_ERR_PARSE,
+        return FOAM_FAIL(p->err, lex_is_eof(t) ? UMP_ERR_IO : UMP_ERR_PARSE,
                         "%s:%d: expected the size of %s, found %s", lx->file, t->line, what, tb);
     }
     return UMP_OK;
@@ -1284,7 +1293,7 @@ static ump_status parse_body(parser *p, foam_lexer *lx)
                 if (!(o.type == FOAM_TOK_PUNCT && o.v.punct == '(')) {
                     char tb[128];
                     tokstr(&o, tb, sizeof tb);
-                    return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected '(', found %s",
+                    return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected '(', found %s",
                                     lx->file, o.line, tb);
                 }
                 UMP_CALL(push_tok(p, &o));
@@ -1298,14 +1307,14 @@ static ump_status parse_body(parser *p, foam_lexer *lx)
                 if (!(o.type == FOAM_TOK_PUNCT && o.v.punct == ')')) {
                     char tb[128];
                     tokstr(&o, tb, sizeof tb);
-                    return UMP_FAIL(p->err, lex_is_eof(&o) ? UMP_ERR_IO : UMP_ERR_PARSE,
+                    return FOAM_FAIL(p->err, lex_is_eof(&o) ? UMP_ERR_IO : UMP_ERR_PARSE,
                                     "%s:%d: expected ')' after %lld lists, found %s", lx->file,
                                     o.line, (long long)t.v.label, tb);
                 }
                 UMP_CALL(push_tok(p, &o));
             }
         } else {
-            return UMP_FAIL(p->err, UMP_ERR_UNSUPPORTED,
+            return FOAM_FAIL(p->err, UMP_ERR_UNSUPPORTED,
                             "%s: binary files of class '%s' are not supported", f->path,
                             f->class_name);
         }
@@ -1330,7 +1339,7 @@ static ump_status parse_file(parser *p, const char *buf, size_t len)
         if (!(o.type == FOAM_TOK_PUNCT && o.v.punct == '{')) {
             char tb[128];
             tokstr(&o, tb, sizeof tb);
-            return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected '{' after FoamFile, found %s",
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected '{' after FoamFile, found %s",
                             f->path, o.line, tb);
         }
         UMP_CALL(parse_block(p, &lx, NULL, "FoamFile", o.line, &f->header));
@@ -1373,12 +1382,12 @@ ump_status foam_file_parse_ex(const char *name, const char *buf, size_t len, uns
     if (!name)
         name = "(buffer)";
     if (!buf && len)
-        return UMP_FAIL(err, UMP_ERR_INPUT, "%s: no data", name);
+        return FOAM_FAIL(err, UMP_ERR_INPUT, "%s: no data", name);
     foam_file *f = ump_alloc_array(1, sizeof *f);
     foam_arena *a = f ? arena_new() : NULL;
     if (!a) {
         free(f);
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", name);
+        return FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", name);
     }
     f->arena = a;
     f->label_bytes = 4;
@@ -1388,7 +1397,7 @@ ump_status foam_file_parse_ex(const char *name, const char *buf, size_t len, uns
     f->object = f->class_name;
     if (!f->path || !f->class_name) {
         foam_file_free(&f);
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", name);
+        return FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", name);
     }
     parser p;
     memset(&p, 0, sizeof p);
@@ -1400,7 +1409,7 @@ ump_status foam_file_parse_ex(const char *name, const char *buf, size_t len, uns
     p.budget += len > SIZE_MAX / 32 ? SIZE_MAX / 4 : len * 16;
     f->dict = new_dict(&p, NULL, "", f->path, 1);
     ump_status rc = f->dict ? parse_file(&p, buf ? buf : "", len)
-                            : UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", name);
+                            : FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", name);
     free(p.stk);
     if (rc != UMP_OK) {
         foam_file_free(&f);
@@ -1420,10 +1429,10 @@ ump_status foam_file_read(const char *path, foam_file **out, ump_err *err)
 {
     *out = NULL;
     if (!path)
-        return UMP_FAIL(err, UMP_ERR_IO, "cannot open (null path)");
+        return FOAM_FAIL(err, UMP_ERR_IO, "cannot open (null path)");
     char *real = resolve_gz(path);
     if (!real)
-        return UMP_FAIL(err, UMP_ERR_IO, "cannot open %s (nor %s.gz)", path, path);
+        return FOAM_FAIL(err, UMP_ERR_IO, "cannot open %s (nor %s.gz)", path, path);
     char *buf;
     size_t len;
     ump_status rc = read_whole_file(real, &buf, &len, err);
@@ -1475,7 +1484,9 @@ static int pattern_too_costly(const char *pat, size_t n)
     return 0;
 }
 
-int pattern_match(const char *pattern, const char *key)
+/* Compile a key pattern for whole-string matching, as OpenFOAM's
+ * regExp::match; 0 when it cannot be used (then it matches nothing). */
+static int pattern_compile(const char *pattern, regex_t *rx)
 {
     size_t n = strlen(pattern);
     if (pattern_too_costly(pattern, n))
@@ -1483,15 +1494,19 @@ int pattern_match(const char *pattern, const char *key)
     char *re = ump_alloc_array(n + 5, 1);
     if (!re)
         return 0;
-    /* whole-string match, as OpenFOAM's regExp::match */
     re[0] = '^';
     re[1] = '(';
     memcpy(re + 2, pattern, n);
     memcpy(re + 2 + n, ")$", 3);
-    regex_t rx;
-    int ok = regcomp(&rx, re, REG_EXTENDED | REG_NOSUB) == 0;
+    int ok = regcomp(rx, re, REG_EXTENDED | REG_NOSUB) == 0;
     free(re);
-    if (!ok)
+    return ok;
+}
+
+int pattern_match(const char *pattern, const char *key)
+{
+    regex_t rx;
+    if (!pattern_compile(pattern, &rx))
         return 0;
     int m = regexec(&rx, key, 0, NULL, 0) == 0;
     regfree(&rx);
