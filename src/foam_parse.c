@@ -840,7 +840,6 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
     int openline[MAX_PAREN_DEPTH];
     int depth = 0;
     size_t base = p->nstk;
-    char tb[128];
     for (;;) {
         foam_token t;
         UMP_CALL(lex_next(lx, &t));
@@ -928,7 +927,6 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
                 continue;
             }
         }
-        (void)tb;
         UMP_CALL(push_tok(p, &t));
     }
 }
@@ -1453,32 +1451,77 @@ void foam_file_free(foam_file **fp)
     *fp = NULL;
 }
 
-/* Intervals such as (a{100}){100} make regcomp build huge automata; real
- * OpenFOAM keys never need that, so bound the product of interval counts
- * (and the length) and treat anything beyond as "no match". */
+/* glibc's regcomp copies the tree of an atom for every '+' and interval
+ * applied to it, so "a++++..." or (a{100}){100} build exponentially large
+ * automata. Estimate that size (atoms, doubled by '+', times n+1 by {m,n})
+ * and refuse costly patterns, and back-references (backtracking), treating
+ * them as matching nothing: real OpenFOAM keys never need them. */
 static int pattern_too_costly(const char *pat, size_t n)
 {
+    enum { MAXDEPTH = 32 };
+    const double limit = 4096;
+    double outer[MAXDEPTH], cur = 0, last = 0;
+    int sp = 0;
     if (n > 1024)
         return 1;
-    double cost = 1;
-    for (const char *s = pat; *s; s++) {
-        if (*s != '{')
-            continue;
-        long hi = 0;
-        const char *q = s + 1;
-        while (*q && *q != '}') {
-            if (*q >= '0' && *q <= '9') {
+    for (size_t i = 0; i < n; i++) {
+        char c = pat[i];
+        if (c == '\\') {
+            if (i + 1 < n && pat[i + 1] >= '1' && pat[i + 1] <= '9')
+                return 1;
+            i++;
+            last = 1;
+            cur += 1;
+        } else if (c == '[') {
+            size_t j = i + 1;
+            if (j < n && pat[j] == '^')
+                j++;
+            if (j < n && pat[j] == ']')
+                j++;
+            while (j < n && pat[j] != ']')
+                j++;
+            i = j;
+            last = 1;
+            cur += 1;
+        } else if (c == '(') {
+            if (sp == MAXDEPTH)
+                return 1;
+            outer[sp++] = cur;
+            cur = 0;
+            last = 0;
+        } else if (c == ')' && sp > 0) {
+            last = cur;
+            cur = outer[--sp] + last;
+        } else if (c == '|') {
+            last = 0;
+        } else if (c == '+') {
+            cur += last;
+            last *= 2;
+        } else if (c == '{') {
+            long hi = 0;
+            size_t j = i + 1;
+            while (j < n && pat[j] != '}') {
                 long v = 0;
-                while (*q >= '0' && *q <= '9' && v < 100000)
-                    v = v * 10 + (*q++ - '0');
+                while (j < n && pat[j] >= '0' && pat[j] <= '9' && v < 100000)
+                    v = v * 10 + (pat[j++] - '0');
                 if (v > hi)
                     hi = v;
-            } else {
-                q++;
+                if (j < n && pat[j] != '}' && !(pat[j] >= '0' && pat[j] <= '9'))
+                    j++;
             }
+            i = j;
+            cur += last * (double)hi;
+            last *= (double)(hi + 1);
+        } else if (c == '*' || c == '?') {
+            /* no copy */
+        } else {
+            last = 1;
+            cur += 1;
         }
-        cost *= (double)(hi + 1);
-        if (cost > 1000)
+        double total = cur;
+        for (int k = 0; k < sp; k++)
+            total += outer[k];
+        if (total > limit || last > limit)
             return 1;
     }
     return 0;

@@ -271,6 +271,16 @@ static void test_regex_keys(void **state)
     /* "wallx" is not matched by "wall", but by ".*" */
     assert_ptr_equal(foam_dict_find(f->dict, "wallx", 0), &f->dict->e[0]);
     foam_file_free(&f);
+
+    /* patterns whose automaton would explode (found by fuzzing) or that
+     * need backtracking match nothing, quickly */
+    f = parse_ok("\"a++++++++++++++++++++++++++++++++++++++++\" 1;\n"
+                 "\"((a{100}){100}){100}\" 2;\n\"(a)\\1\" 3;\n"
+                 "#remove \"(b{1000}){1000}\"\n");
+    assert_int_equal(f->dict->n, 3);
+    assert_null(foam_dict_find(f->dict, "aaaa", 0));
+    assert_null(foam_dict_find(f->dict, "aa", 0));
+    foam_file_free(&f);
 }
 
 /* ---- lists ---------------------------------------------------------------------- */
