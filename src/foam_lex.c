@@ -50,12 +50,12 @@ struct foam_arena {
 /* Header size rounded so that the payload is ARENA_ALIGN aligned. */
 #define BLK_HDR (((sizeof(arena_blk) + ARENA_ALIGN - 1) / ARENA_ALIGN) * ARENA_ALIGN)
 
-foam_arena *arena_new(void)
+foam_arena *foam_arena_new(void)
 {
     return ump_alloc_array(1, sizeof(foam_arena));
 }
 
-void arena_free(foam_arena *a)
+void foam_arena_free(foam_arena *a)
 {
     if (!a)
         return;
@@ -71,7 +71,7 @@ void arena_free(foam_arena *a)
     free(a);
 }
 
-void *arena_alloc(foam_arena *a, size_t n, size_t size)
+void *foam_arena_alloc(foam_arena *a, size_t n, size_t size)
 {
     if (size != 0 && n > SIZE_MAX / size)
         return NULL;
@@ -111,9 +111,9 @@ void *arena_alloc(foam_arena *a, size_t n, size_t size)
     return p;
 }
 
-char *arena_strndup(foam_arena *a, const char *s, size_t n)
+char *foam_arena_strndup(foam_arena *a, const char *s, size_t n)
 {
-    char *d = arena_alloc(a, n + 1, 1);
+    char *d = foam_arena_alloc(a, n + 1, 1);
     if (d) {
         if (n)
             memcpy(d, s, n);
@@ -122,9 +122,9 @@ char *arena_strndup(foam_arena *a, const char *s, size_t n)
     return d;
 }
 
-int arena_adopt(foam_arena *a, void *p, void (*fn)(void *))
+int foam_arena_adopt(foam_arena *a, void *p, void (*fn)(void *))
 {
-    arena_cleanup *c = arena_alloc(a, 1, sizeof *c);
+    arena_cleanup *c = foam_arena_alloc(a, 1, sizeof *c);
     if (!c) {
         fn(p);
         return 0;
@@ -167,7 +167,7 @@ static int is_number_char(int c)
 
 /* ---- lexer ----------------------------------------------------------------- */
 
-void lex_init(foam_lexer *lx, const char *buf, size_t len, const char *file,
+void foam_lex_init(foam_lexer *lx, const char *buf, size_t len, const char *file,
               foam_arena *a, ump_err *err)
 {
     memset(lx, 0, sizeof *lx);
@@ -181,7 +181,7 @@ void lex_init(foam_lexer *lx, const char *buf, size_t len, const char *file,
     lx->err = err;
 }
 
-int lex_is_eof(const foam_token *t)
+int foam_lex_is_eof(const foam_token *t)
 {
     return t->type == FOAM_TOK_PUNCT && t->v.punct == 0;
 }
@@ -240,7 +240,7 @@ static ump_status nomem(foam_lexer *lx)
 static ump_status make_word(foam_lexer *lx, size_t start, size_t end, foam_token *t)
 {
     t->type = FOAM_TOK_WORD;
-    t->v.str = arena_strndup(lx->arena, lx->buf + start, end - start);
+    t->v.str = foam_arena_strndup(lx->arena, lx->buf + start, end - start);
     return t->v.str ? UMP_OK : nomem(lx);
 }
 
@@ -305,7 +305,7 @@ static ump_status lex_string(foam_lexer *lx, foam_token *t)
         return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                         "%s:%d: unterminated string, found end of file", lx->file,
                         start_line);
-    char *s = arena_alloc(lx->arena, end - lx->pos, 1);
+    char *s = foam_arena_alloc(lx->arena, end - lx->pos, 1);
     if (!s)
         return nomem(lx);
     size_t o = 0;
@@ -341,7 +341,7 @@ static ump_status lex_verbatim(foam_lexer *lx, foam_token *t)
     for (; i + 1 < n; i++) {
         if (b[i] == '#' && b[i + 1] == '}') {
             t->type = FOAM_TOK_STRING;
-            t->v.str = arena_strndup(lx->arena, b + lx->pos + 2, i - lx->pos - 2);
+            t->v.str = foam_arena_strndup(lx->arena, b + lx->pos + 2, i - lx->pos - 2);
             if (!t->v.str)
                 return nomem(lx);
             lx->pos = i + 2;
@@ -414,7 +414,7 @@ static ump_status lex_number(foam_lexer *lx, foam_token *t)
     return make_word(lx, s, i, t);
 }
 
-ump_status lex_next(foam_lexer *lx, foam_token *t)
+ump_status foam_lex_next(foam_lexer *lx, foam_token *t)
 {
     if (lx->has_back) {
         *t = lx->back;
@@ -455,7 +455,7 @@ ump_status lex_next(foam_lexer *lx, foam_token *t)
             return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                             "%s:%d: expected a directive name after '#'", lx->file, t->line);
         size_t e = scan_word(lx, q, 0);
-        char *w = arena_alloc(lx->arena, e - q + 2, 1);
+        char *w = foam_arena_alloc(lx->arena, e - q + 2, 1);
         if (!w)
             return nomem(lx);
         w[0] = '#';
@@ -504,25 +504,25 @@ ump_status lex_next(foam_lexer *lx, foam_token *t)
     return make_word(lx, p, e, t);
 }
 
-ump_status lex_peek(foam_lexer *lx, foam_token *t)
+ump_status foam_lex_peek(foam_lexer *lx, foam_token *t)
 {
     if (lx->has_back) {
         *t = lx->back;
         return UMP_OK;
     }
-    UMP_CALL(lex_next(lx, t));
+    UMP_CALL(foam_lex_next(lx, t));
     lx->back = *t;
     lx->has_back = 1;
     return UMP_OK;
 }
 
-void lex_unget(foam_lexer *lx, const foam_token *t)
+void foam_lex_unget(foam_lexer *lx, const foam_token *t)
 {
     lx->back = *t;
     lx->has_back = 1;
 }
 
-ump_status lex_peek_char(foam_lexer *lx, int *c)
+ump_status foam_lex_peek_char(foam_lexer *lx, int *c)
 {
     UMP_CALL(skip_blank(lx));
     *c = lx->pos < lx->len ? (unsigned char)lx->buf[lx->pos] : -1;
@@ -547,7 +547,7 @@ static int host_is_le(void)
     return c == 1;
 }
 
-ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line,
+ump_status foam_lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line,
                     foam_token *out)
 {
     if (lx->has_back)
@@ -563,15 +563,15 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
     out->v.blob.ncomp = ncomp;
     out->v.blob.is_label = is_label;
     int c;
-    UMP_CALL(lex_peek_char(lx, &c));
+    UMP_CALL(foam_lex_peek_char(lx, &c));
     if (n == 0) {
         /* "0" alone, or "0 ( )" / "0()" */
-        out->v.blob.data = arena_alloc(lx->arena, 1, sizeof(double));
+        out->v.blob.data = foam_arena_alloc(lx->arena, 1, sizeof(double));
         if (!out->v.blob.data)
             return nomem(lx);
         if (c == '(') {
             lx->pos++;
-            UMP_CALL(lex_peek_char(lx, &c));
+            UMP_CALL(foam_lex_peek_char(lx, &c));
             if (c != ')')
                 return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                                 "%s:%d: expected ')' closing empty list, found %s",
@@ -596,7 +596,7 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
                         lx->file, line, (long long)n, avail, csize);
     size_t cnt = (size_t)n * (size_t)ncomp;
     const unsigned char *src = (const unsigned char *)lx->buf + lx->pos;
-    void *data = arena_alloc(lx->arena, cnt, 8);
+    void *data = foam_arena_alloc(lx->arena, cnt, 8);
     if (!data)
         return nomem(lx);
     int le = host_is_le();
@@ -637,7 +637,7 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
     lx->pos += cnt * (size_t)csize;
     out->v.blob.n = (size_t)n;
     out->v.blob.data = data;
-    UMP_CALL(lex_peek_char(lx, &c));
+    UMP_CALL(foam_lex_peek_char(lx, &c));
     if (c != ')')
         return FOAM_FAIL(lx->err, c < 0 ? UMP_ERR_IO : UMP_ERR_PARSE,
                         "%s:%d: expected ')' after binary list of %lld elements, found %s",
@@ -647,7 +647,7 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
     return UMP_OK;
 }
 
-int list_type_ncomp(const char *w, int *is_label)
+int foam_list_type_ncomp(const char *w, int *is_label)
 {
     static const struct { const char *name; int ncomp, label; } types[] = {
         {"List<label>", 1, 1},         {"List<scalar>", 1, 0},
@@ -673,7 +673,7 @@ static int is_regular(const char *path)
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
-char *resolve_gz(const char *path)
+char *foam_resolve_gz(const char *path)
 {
     if (is_regular(path))
         return ump_strdup(path);
@@ -691,14 +691,14 @@ char *resolve_gz(const char *path)
 
 int foam_file_exists(const char *path)
 {
-    char *p = path ? resolve_gz(path) : NULL;
+    char *p = path ? foam_resolve_gz(path) : NULL;
     free(p);
     return p != NULL;
 }
 
 /* zlib's gzread passes plain files through unchanged, so one reader serves
  * both NAME and NAME.gz. */
-ump_status read_whole_file(const char *path, char **out, size_t *outlen, ump_err *err)
+ump_status foam_read_whole_file(const char *path, char **out, size_t *outlen, ump_err *err)
 {
     *out = NULL;
     *outlen = 0;

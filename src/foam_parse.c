@@ -50,7 +50,7 @@ static ump_status oom(parser *p, const char *file, int line)
 
 static void tokstr(const foam_token *t, char *buf, size_t len)
 {
-    if (lex_is_eof(t))
+    if (foam_lex_is_eof(t))
         snprintf(buf, len, "end of file");
     else
         foam_tok_str(t, buf, len);
@@ -95,7 +95,7 @@ static uint32_t hash_key(const char *s, size_t n)
 static foam_dict *new_dict(parser *p, foam_dict *parent, const char *name, const char *file,
                            int line)
 {
-    dict_impl *di = arena_alloc(p->a, 1, sizeof *di);
+    foam_dict_impl *di = foam_arena_alloc(p->a, 1, sizeof *di);
     if (!di)
         return NULL;
     di->pub.parent = parent;
@@ -114,7 +114,7 @@ static int key_eq(const char *key, const char *s, size_t n)
  * as OpenFOAM's hashed look-up does), or -1. */
 static long find_exact_n(const foam_dict *d, const char *s, size_t n)
 {
-    const dict_impl *di = (const dict_impl *)d;
+    const foam_dict_impl *di = (const foam_dict_impl *)d;
     if (di->hcap) {
         size_t m = di->hcap - 1, h = hash_key(s, n) & m;
         while (di->hidx[h]) {
@@ -137,7 +137,7 @@ static long find_exact(const foam_dict *d, const char *key)
 }
 
 /* (Re)build the hash index once a dictionary is big enough to need one. */
-static int rebuild_index(parser *p, dict_impl *di)
+static int rebuild_index(parser *p, foam_dict_impl *di)
 {
     foam_dict *d = &di->pub;
     if (d->n < 8) {
@@ -148,7 +148,7 @@ static int rebuild_index(parser *p, dict_impl *di)
     size_t cap = 16;
     while (cap < d->n * 2)
         cap *= 2;
-    uint32_t *h = arena_alloc(p->a, cap, sizeof *h);
+    uint32_t *h = foam_arena_alloc(p->a, cap, sizeof *h);
     if (!h)
         return 0;
     for (size_t i = 0; i < d->n; i++) {
@@ -165,12 +165,12 @@ static int rebuild_index(parser *p, dict_impl *di)
 /* Append without checking for an existing key. */
 static ump_status dict_append(parser *p, foam_dict *d, const foam_entry *e)
 {
-    dict_impl *di = (dict_impl *)d;
+    foam_dict_impl *di = (foam_dict_impl *)d;
     if (d->n >= UINT32_MAX - 1)
         return FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: too many entries", e->file, e->line);
     if (d->n == d->cap) {
         size_t nc = d->cap ? d->cap * 2 : 8;
-        foam_entry *ne = arena_alloc(p->a, nc, sizeof *ne);
+        foam_entry *ne = foam_arena_alloc(p->a, nc, sizeof *ne);
         if (!ne)
             return oom(p, e->file, e->line);
         if (d->n)
@@ -210,7 +210,7 @@ static ump_status dict_add(parser *p, foam_dict *d, foam_entry *e)
     foam_entry *old = &d->e[i];
     if (old->dict && e->dict)
         return dict_merge(p, old->dict, e->dict);
-    dict_impl *di = (dict_impl *)d;
+    foam_dict_impl *di = (foam_dict_impl *)d;
     di->npat -= (size_t)old->is_pattern;
     di->npat += (size_t)e->is_pattern;
     if (e->dict)
@@ -250,7 +250,7 @@ static foam_dict *dict_copy(parser *p, const foam_dict *src, foam_dict *parent,
     if ((*rc = spend(p, src->n + 1, where)) != UMP_OK)
         return NULL;
     foam_dict *d = new_dict(p, parent, src->name, src->file, src->line);
-    foam_entry *e = src->n ? arena_alloc(p->a, src->n, sizeof *e) : NULL;
+    foam_entry *e = src->n ? foam_arena_alloc(p->a, src->n, sizeof *e) : NULL;
     if (!d || (src->n && !e)) {
         *rc = oom(p, where->file, where->line);
         return NULL;
@@ -265,8 +265,8 @@ static foam_dict *dict_copy(parser *p, const foam_dict *src, foam_dict *parent,
     }
     d->e = e;
     d->n = d->cap = src->n;
-    dict_impl *di = (dict_impl *)d;
-    di->npat = ((const dict_impl *)src)->npat;
+    foam_dict_impl *di = (foam_dict_impl *)d;
+    di->npat = ((const foam_dict_impl *)src)->npat;
     if (!rebuild_index(p, di)) {
         *rc = oom(p, where->file, where->line);
         return NULL;
@@ -294,12 +294,12 @@ static const foam_entry *find_var_n(const foam_dict *d, const char *s, size_t n,
         long i = find_exact_n(d, s, n);
         if (i >= 0)
             return &d->e[i];
-        if (pat && ((const dict_impl *)d)->npat && n < 1024) {
+        if (pat && ((const foam_dict_impl *)d)->npat && n < 1024) {
             char key[1024];
             memcpy(key, s, n);
             key[n] = '\0';
             for (size_t k = d->n; k-- > 0;)
-                if (d->e[k].is_pattern && pattern_match(d->e[k].key, key))
+                if (d->e[k].is_pattern && foam_pattern_match(d->e[k].key, key))
                     return &d->e[k];
         }
     }
@@ -508,11 +508,11 @@ static ump_status expand_var(parser *p, foam_dict *ctx, const foam_token *t)
                         t->line, name);
     /* OpenFOAM tokenizes the environment value */
     foam_lexer el;
-    lex_init(&el, env, strlen(env), t->file, p->a, p->err);
+    foam_lex_init(&el, env, strlen(env), t->file, p->a, p->err);
     for (;;) {
         foam_token et;
-        UMP_CALL(lex_next(&el, &et));
-        if (lex_is_eof(&et))
+        UMP_CALL(foam_lex_next(&el, &et));
+        if (foam_lex_is_eof(&et))
             break;
         UMP_CALL(spend(p, 1, t));
         et.line = t->line;
@@ -591,7 +591,8 @@ static ump_status expand_name(parser *p, foam_dict *ctx, const foam_token *t, ch
 #define APPEND(str_, n_) do { \
         size_t n__ = (n_); \
         if (o + n__ >= len) \
-            return FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: file name too long", t->file, t->line); \
+            return FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: file name too long", \
+                             t->file, t->line); \
         memcpy(out + o, (str_), n__); o += n__; out[o] = '\0'; \
     } while (0)
     static const char *const tags[] = {"<case>", "<system>", "<constant>"};
@@ -684,7 +685,7 @@ static ump_status include_path(parser *p, foam_dict *ctx, const foam_token *dir_
             pcat(full, sizeof full, d, "/", name);
         }
         snprintf(tried, tlen, "%s", full);
-        *found = resolve_gz(full);
+        *found = foam_resolve_gz(full);
         return UMP_OK;
     }
     /* #includeEtc: the OpenFOAM etc directories, in order */
@@ -698,7 +699,7 @@ static ump_status include_path(parser *p, foam_dict *ctx, const foam_token *dir_
     pcat(dirs[nd++], sizeof dirs[0], "/usr/share/openfoam/etc", "", "");
     for (int i = 0; i < nd && !*found; i++) {
         if (pcat(full, sizeof full, dirs[i], "/", name))
-            *found = resolve_gz(full);
+            *found = foam_resolve_gz(full);
     }
     snprintf(tried, tlen, "'%s' in $FOAM_ETC, $WM_PROJECT_DIR/etc and /usr/share/openfoam/etc",
              name);
@@ -721,7 +722,7 @@ static ump_status include_open(parser *p, foam_lexer *lx, foam_dict *ctx,
     int optional = strcmp(dn, "#includeIfPresent") == 0 || strcmp(dn, "#sinclude") == 0;
     memset(src, 0, sizeof *src);
     foam_token nt;
-    UMP_CALL(lex_next(lx, &nt));
+    UMP_CALL(foam_lex_next(lx, &nt));
     if (nt.type != FOAM_TOK_STRING && nt.type != FOAM_TOK_WORD) {
         char tb[128];
         tokstr(&nt, tb, sizeof tb);
@@ -747,14 +748,14 @@ static ump_status include_open(parser *p, foam_lexer *lx, foam_dict *ctx,
         return FOAM_FAIL(p->err, UMP_ERR_IO, "%s:%d: %s: cannot open %s (nor %s.gz)",
                         dtok->file, dtok->line, dn, tried, tried);
     }
-    src->file = arena_strndup(p->a, path, strlen(path));
+    src->file = foam_arena_strndup(p->a, path, strlen(path));
     if (!src->file) {
         free(path);
         return oom(p, dtok->file, dtok->line);
     }
     ump_err sub;
     memset(&sub, 0, sizeof sub);
-    ump_status rc = read_whole_file(path, &src->buf, &src->len, &sub);
+    ump_status rc = foam_read_whole_file(path, &src->buf, &src->len, &sub);
     free(path);
     if (rc != UMP_OK)
         return FOAM_FAIL(p->err, rc, "%s:%d: %s: %s", dtok->file, dtok->line, dn, sub.msg);
@@ -772,7 +773,7 @@ static ump_status include_entries(parser *p, foam_lexer *lx, foam_dict *ctx,
     if (!src.buf)
         return UMP_OK;
     foam_lexer il;
-    lex_init(&il, src.buf, src.len, src.file, p->a, p->err);
+    foam_lex_init(&il, src.buf, src.len, src.file, p->a, p->err);
     p->incl_depth++;
     ump_status rc = parse_entries(p, &il, ctx, 0, 1, 0);
     p->incl_depth--;
@@ -789,7 +790,7 @@ static ump_status include_tokens(parser *p, foam_lexer *lx, foam_dict *ctx,
     if (!src.buf)
         return UMP_OK;
     foam_lexer il;
-    lex_init(&il, src.buf, src.len, src.file, p->a, p->err);
+    foam_lex_init(&il, src.buf, src.len, src.file, p->a, p->err);
     p->incl_depth++;
     ump_status rc = parse_tokens(p, &il, ctx, MODE_EOF, dtok->v.str, dtok->line);
     p->incl_depth--;
@@ -842,14 +843,14 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
     size_t base = p->nstk;
     for (;;) {
         foam_token t;
-        UMP_CALL(lex_next(lx, &t));
-        if (lex_is_eof(&t)) {
+        UMP_CALL(foam_lex_next(lx, &t));
+        if (foam_lex_is_eof(&t)) {
             if (depth > 0)
                 return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                 "%s:%d: expected '%c' closing '%c' opened at line %d, found end "
                                 "of file",
-                                lx->file, t.line, open[depth - 1] == '(' ? ')' : '}', open[depth - 1],
-                                openline[depth - 1]);
+                                lx->file, t.line, open[depth - 1] == '(' ? ')' : '}',
+                                open[depth - 1], openline[depth - 1]);
             if (mode == MODE_ENTRY)
                 return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                 "%s:%d: expected ';' ending entry '%s' (line %d), found end "
@@ -916,13 +917,13 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
         if (t.type == FOAM_TOK_LABEL && lx->binary && p->nstk > base &&
             p->stk[p->nstk - 1].type == FOAM_TOK_WORD) {
             int is_label = 0;
-            int ncomp = list_type_ncomp(p->stk[p->nstk - 1].v.str, &is_label);
+            int ncomp = foam_list_type_ncomp(p->stk[p->nstk - 1].v.str, &is_label);
             int nc;
             if (ncomp > 0)
-                UMP_CALL(lex_peek_char(lx, &nc));
+                UMP_CALL(foam_lex_peek_char(lx, &nc));
             if (ncomp > 0 && nc != '{') {
                 foam_token bt;
-                UMP_CALL(lex_blob(lx, t.v.label, ncomp, is_label, t.line, &bt));
+                UMP_CALL(foam_lex_blob(lx, t.v.label, ncomp, is_label, t.line, &bt));
                 UMP_CALL(push_tok(p, &bt));
                 continue;
             }
@@ -938,7 +939,7 @@ static ump_status take_tokens(parser *p, size_t base, foam_entry *e)
     e->ntok = n;
     e->tok = NULL;
     if (n) {
-        e->tok = arena_alloc(p->a, n, sizeof *e->tok);
+        e->tok = foam_arena_alloc(p->a, n, sizeof *e->tok);
         if (!e->tok)
             return oom(p, e->file, e->line);
         memcpy(e->tok, p->stk + base, n * sizeof *e->tok);
@@ -956,7 +957,7 @@ static void remove_keys(parser *p, foam_dict *d, const char *text, int is_patter
     regex_t rx;
     int have_rx = is_pattern && pattern_compile(text, &rx);
     size_t o = 0;
-    dict_impl *di = (dict_impl *)d;
+    foam_dict_impl *di = (foam_dict_impl *)d;
     for (size_t i = 0; i < d->n; i++) {
         const char *k = d->e[i].key;
         int gone = strcmp(k, text) == 0 || (have_rx && regexec(&rx, k, 0, NULL, 0) == 0);
@@ -979,11 +980,11 @@ static void remove_keys(parser *p, foam_dict *d, const char *text, int is_patter
 static ump_status directive_remove(parser *p, foam_lexer *lx, foam_dict *d)
 {
     foam_token t;
-    UMP_CALL(lex_next(lx, &t));
+    UMP_CALL(foam_lex_next(lx, &t));
     int list = t.type == FOAM_TOK_PUNCT && t.v.punct == '(';
     for (;;) {
         if (list) {
-            UMP_CALL(lex_next(lx, &t));
+            UMP_CALL(foam_lex_next(lx, &t));
             if (t.type == FOAM_TOK_PUNCT && t.v.punct == ')')
                 return UMP_OK;
         }
@@ -1009,7 +1010,7 @@ static ump_status directive_dict(parser *p, foam_lexer *lx, foam_dict *d, const 
         return directive_remove(p, lx, d);
     if (strcmp(dn, "#inputMode") == 0) {
         foam_token m;
-        UMP_CALL(lex_next(lx, &m));
+        UMP_CALL(foam_lex_next(lx, &m));
         if (m.type != FOAM_TOK_WORD) {
             char tb[128];
             tokstr(&m, tb, sizeof tb);
@@ -1020,7 +1021,7 @@ static ump_status directive_dict(parser *p, foam_lexer *lx, foam_dict *d, const 
     }
     if (strcmp(dn, "#includeFunc") == 0 || strcmp(dn, "#includeFunction") == 0) {
         foam_token a;
-        UMP_CALL(lex_next(lx, &a));
+        UMP_CALL(foam_lex_next(lx, &a));
         if (a.type != FOAM_TOK_WORD && a.type != FOAM_TOK_STRING) {
             char tb[128];
             tokstr(&a, tb, sizeof tb);
@@ -1033,7 +1034,7 @@ static ump_status directive_dict(parser *p, foam_lexer *lx, foam_dict *d, const 
         e.key = "#includeFunc";
         e.file = t->file;
         e.line = t->line;
-        e.tok = arena_alloc(p->a, 1, sizeof *e.tok);
+        e.tok = foam_arena_alloc(p->a, 1, sizeof *e.tok);
         if (!e.tok)
             return oom(p, t->file, t->line);
         e.tok[0] = a;
@@ -1052,14 +1053,14 @@ static ump_status var_keyword(parser *p, foam_lexer *lx, foam_dict *d, const foa
     UMP_CALL(var_name(p, d, t, name, sizeof name));
     const foam_entry *e = resolve_var(d, name, 1);
     foam_token nt;
-    UMP_CALL(lex_peek(lx, &nt));
+    UMP_CALL(foam_lex_peek(lx, &nt));
     if (nt.type == FOAM_TOK_PUNCT && nt.v.punct == '{') {
         if (!e || e->dict || e->ntok < 1 ||
             (e->tok[0].type != FOAM_TOK_WORD && e->tok[0].type != FOAM_TOK_STRING))
             return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                             "%s:%d: $%s used as a keyword must name a word entry", t->file,
                             t->line, name);
-        (void)lex_next(lx, &nt);
+        (void)foam_lex_next(lx, &nt);
         foam_entry ne;
         memset(&ne, 0, sizeof ne);
         ne.key = e->tok[0].v.str;
@@ -1090,8 +1091,8 @@ static ump_status parse_entries(parser *p, foam_lexer *lx, foam_dict *d, int unt
     char tb[128];
     for (;;) {
         foam_token t;
-        UMP_CALL(lex_next(lx, &t));
-        if (lex_is_eof(&t)) {
+        UMP_CALL(foam_lex_next(lx, &t));
+        if (foam_lex_is_eof(&t)) {
             if (until_brace)
                 return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                 "%s:%d: expected '}' closing dictionary '%s' opened at line %d, "
@@ -1128,9 +1129,9 @@ static ump_status parse_entries(parser *p, foam_lexer *lx, foam_dict *d, int unt
         e.file = t.file;
         e.line = t.line;
         foam_token nt;
-        UMP_CALL(lex_peek(lx, &nt));
+        UMP_CALL(foam_lex_peek(lx, &nt));
         if (nt.type == FOAM_TOK_PUNCT && nt.v.punct == '{') {
-            (void)lex_next(lx, &nt);
+            (void)foam_lex_next(lx, &nt);
             UMP_CALL(parse_block(p, lx, d, e.key, nt.line, &e.dict));
         } else {
             size_t base = p->nstk;
@@ -1259,11 +1260,11 @@ static int body_text_class(const char *cls, int *inner_labels)
 
 static ump_status expect_count(parser *p, foam_lexer *lx, foam_token *t, const char *what)
 {
-    UMP_CALL(lex_next(lx, t));
+    UMP_CALL(foam_lex_next(lx, t));
     if (t->type != FOAM_TOK_LABEL || t->v.label < 0) {
         char tb[128];
         tokstr(t, tb, sizeof tb);
-        return FOAM_FAIL(p->err, lex_is_eof(t) ? UMP_ERR_IO : UMP_ERR_PARSE,
+        return FOAM_FAIL(p->err, foam_lex_is_eof(t) ? UMP_ERR_IO : UMP_ERR_PARSE,
                         "%s:%d: expected the size of %s, found %s", lx->file, t->line, what, tb);
     }
     return UMP_OK;
@@ -1278,7 +1279,7 @@ static ump_status parse_body(parser *p, foam_lexer *lx)
             for (int k = 0; k < nlists; k++) {
                 foam_token t, bt;
                 UMP_CALL(expect_count(p, lx, &t, "binary list"));
-                UMP_CALL(lex_blob(lx, t.v.label, ncomp, is_label, t.line, &bt));
+                UMP_CALL(foam_lex_blob(lx, t.v.label, ncomp, is_label, t.line, &bt));
                 UMP_CALL(push_tok(p, &bt));
             }
         } else if (body_text_class(f->class_name, &inner)) {
@@ -1287,7 +1288,7 @@ static ump_status parse_body(parser *p, foam_lexer *lx)
                 foam_token t, o;
                 UMP_CALL(expect_count(p, lx, &t, "list"));
                 UMP_CALL(push_tok(p, &t));
-                UMP_CALL(lex_next(lx, &o));
+                UMP_CALL(foam_lex_next(lx, &o));
                 if (!(o.type == FOAM_TOK_PUNCT && o.v.punct == '(')) {
                     char tb[128];
                     tokstr(&o, tb, sizeof tb);
@@ -1298,14 +1299,14 @@ static ump_status parse_body(parser *p, foam_lexer *lx)
                 for (int64_t i = 0; i < t.v.label; i++) {
                     foam_token c, bt;
                     UMP_CALL(expect_count(p, lx, &c, "binary label list"));
-                    UMP_CALL(lex_blob(lx, c.v.label, 1, 1, c.line, &bt));
+                    UMP_CALL(foam_lex_blob(lx, c.v.label, 1, 1, c.line, &bt));
                     UMP_CALL(push_tok(p, &bt));
                 }
-                UMP_CALL(lex_next(lx, &o));
+                UMP_CALL(foam_lex_next(lx, &o));
                 if (!(o.type == FOAM_TOK_PUNCT && o.v.punct == ')')) {
                     char tb[128];
                     tokstr(&o, tb, sizeof tb);
-                    return FOAM_FAIL(p->err, lex_is_eof(&o) ? UMP_ERR_IO : UMP_ERR_PARSE,
+                    return FOAM_FAIL(p->err, foam_lex_is_eof(&o) ? UMP_ERR_IO : UMP_ERR_PARSE,
                                     "%s:%d: expected ')' after %lld lists, found %s", lx->file,
                                     o.line, (long long)t.v.label, tb);
                 }
@@ -1327,13 +1328,13 @@ static ump_status parse_file(parser *p, const char *buf, size_t len)
 {
     foam_file *f = p->f;
     foam_lexer lx;
-    lex_init(&lx, buf, len, f->path, p->a, p->err);
+    foam_lex_init(&lx, buf, len, f->path, p->a, p->err);
     foam_token t;
-    UMP_CALL(lex_peek(&lx, &t));
+    UMP_CALL(foam_lex_peek(&lx, &t));
     if (t.type == FOAM_TOK_WORD && strcmp(t.v.str, "FoamFile") == 0) {
-        (void)lex_next(&lx, &t);
+        (void)foam_lex_next(&lx, &t);
         foam_token o;
-        UMP_CALL(lex_next(&lx, &o));
+        UMP_CALL(foam_lex_next(&lx, &o));
         if (!(o.type == FOAM_TOK_PUNCT && o.v.punct == '{')) {
             char tb[128];
             tokstr(&o, tb, sizeof tb);
@@ -1345,14 +1346,14 @@ static ump_status parse_file(parser *p, const char *buf, size_t len)
         lx.binary = f->binary;
         lx.label_bytes = f->label_bytes;
         lx.scalar_bytes = f->scalar_bytes;
-        UMP_CALL(lex_peek(&lx, &t));
+        UMP_CALL(foam_lex_peek(&lx, &t));
     }
     if (t.type == FOAM_TOK_LABEL || (t.type == FOAM_TOK_PUNCT && t.v.punct == '(')) {
         UMP_CALL(parse_body(p, &lx));
         /* hand the scratch stack over as the body (no copy) */
         f->nbody = p->nstk;
         if (p->nstk == 0) {
-            f->body = arena_alloc(p->a, 1, sizeof *f->body);
+            f->body = foam_arena_alloc(p->a, 1, sizeof *f->body);
             if (!f->body)
                 return oom(p, f->path, 0);
         } else {
@@ -1362,7 +1363,7 @@ static ump_status parse_file(parser *p, const char *buf, size_t len)
             f->body = p->stk;
             p->stk = NULL;
             p->nstk = p->capstk = 0;
-            if (!arena_adopt(p->a, f->body, free_ptr)) {
+            if (!foam_arena_adopt(p->a, f->body, free_ptr)) {
                 f->body = NULL;
                 f->nbody = 0;
                 return oom(p, f->path, 0);
@@ -1382,7 +1383,7 @@ ump_status foam_file_parse_ex(const char *name, const char *buf, size_t len, uns
     if (!buf && len)
         return FOAM_FAIL(err, UMP_ERR_INPUT, "%s: no data", name);
     foam_file *f = ump_alloc_array(1, sizeof *f);
-    foam_arena *a = f ? arena_new() : NULL;
+    foam_arena *a = f ? foam_arena_new() : NULL;
     if (!a) {
         free(f);
         return FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", name);
@@ -1390,8 +1391,8 @@ ump_status foam_file_parse_ex(const char *name, const char *buf, size_t len, uns
     f->arena = a;
     f->label_bytes = 4;
     f->scalar_bytes = 8;
-    f->path = arena_strndup(a, name, strlen(name));
-    f->class_name = arena_strndup(a, "", 0);
+    f->path = foam_arena_strndup(a, name, strlen(name));
+    f->class_name = foam_arena_strndup(a, "", 0);
     f->object = f->class_name;
     if (!f->path || !f->class_name) {
         foam_file_free(&f);
@@ -1428,12 +1429,12 @@ ump_status foam_file_read(const char *path, foam_file **out, ump_err *err)
     *out = NULL;
     if (!path)
         return FOAM_FAIL(err, UMP_ERR_IO, "cannot open (null path)");
-    char *real = resolve_gz(path);
+    char *real = foam_resolve_gz(path);
     if (!real)
         return FOAM_FAIL(err, UMP_ERR_IO, "cannot open %s (nor %s.gz)", path, path);
     char *buf;
     size_t len;
-    ump_status rc = read_whole_file(real, &buf, &len, err);
+    ump_status rc = foam_read_whole_file(real, &buf, &len, err);
     if (rc == UMP_OK) {
         rc = foam_file_parse_ex(real, buf, len, 0, out, err);
         free(buf);
@@ -1446,7 +1447,7 @@ void foam_file_free(foam_file **fp)
 {
     if (!fp || !*fp)
         return;
-    arena_free((*fp)->arena);
+    foam_arena_free((*fp)->arena);
     free(*fp);
     *fp = NULL;
 }
@@ -1546,7 +1547,7 @@ static int pattern_compile(const char *pattern, regex_t *rx)
     return ok;
 }
 
-int pattern_match(const char *pattern, const char *key)
+int foam_pattern_match(const char *pattern, const char *key)
 {
     regex_t rx;
     if (!pattern_compile(pattern, &rx))
