@@ -25,7 +25,7 @@ const foam_entry *foam_dict_find(const foam_dict *d, const char *key, int recurs
                 return &d->e[i];
         /* patterns: the latest definition wins, as in OpenFOAM */
         for (size_t i = d->n; i-- > 0;)
-            if (d->e[i].is_pattern && pattern_match(d->e[i].key, key))
+            if (d->e[i].is_pattern && foam_pattern_match(d->e[i].key, key))
                 return &d->e[i];
     }
     return NULL;
@@ -99,6 +99,9 @@ const char *foam_tok_str(const foam_token *t, char *buf, size_t len)
         snprintf(buf, len, "token of unknown type");
         break;
     }
+    for (char *c = buf; *c; c++)
+        if ((unsigned char)*c < 32 || *c == 127)
+            *c = ' ';
     return buf;
 }
 
@@ -130,7 +133,7 @@ static ump_status fail_at(ump_err *err, ump_status code, const foam_token *tok, 
         snprintf(t, sizeof t, "end of entry (after line %d)", tok[nt - 1].line);
     else
         snprintf(t, sizeof t, "nothing");
-    return UMP_FAIL(err, code, "%s: %s: expected %s, found %s", w, what ? what : "value",
+    return FOAM_FAIL(err, code, "%s: %s: expected %s, found %s", w, what ? what : "value",
                     expected, t);
 }
 
@@ -237,7 +240,7 @@ static ump_status nomem_at(ump_err *err, const foam_token *tok, size_t nt, size_
 {
     char w[512];
     foam_tok_where(tok, nt, pos, NULL, w, sizeof w);
-    return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: %s: out of memory", w, what ? what : "list");
+    return FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: %s: out of memory", w, what ? what : "list");
 }
 
 /* ---- list headers ------------------------------------------------------------- */
@@ -417,7 +420,7 @@ ump_status foam_tok_scalar_list(const foam_token *tok, size_t nt, size_t *pos, i
     *out = NULL;
     *n = 0;
     if (ncomp < 1 || ncomp > 9)
-        return UMP_FAIL(err, UMP_ERR_INPUT, "%s: bad component count %d", what ? what : "list",
+        return FOAM_FAIL(err, UMP_ERR_INPUT, "%s: bad component count %d", what ? what : "list",
                         ncomp);
     dvec d = {0};
     size_t p = *pos, ne = 0;
@@ -445,7 +448,7 @@ static ump_status label_fits(const foam_token *tok, size_t nt, size_t pos, int64
     if (v < INT32_MIN || v > UMP_IDX_MAX) {
         char w[512];
         foam_tok_where(tok, nt, pos, NULL, w, sizeof w);
-        return UMP_FAIL(err, UMP_ERR_INPUT, "%s: %s: label %lld out of range", w,
+        return FOAM_FAIL(err, UMP_ERR_INPUT, "%s: %s: label %lld out of range", w,
                         what ? what : "list", (long long)v);
     }
     return UMP_OK;
@@ -592,7 +595,7 @@ static ump_status compact_lists(const foam_token *tok, size_t nt, size_t *pos, u
         free(it);
         char w[512];
         foam_tok_where(tok, nt, *pos, NULL, w, sizeof w);
-        return UMP_FAIL(err, UMP_ERR_INPUT, "%s: %s: compact list: expected %s", w,
+        return FOAM_FAIL(err, UMP_ERR_INPUT, "%s: %s: compact list: expected %s", w,
                         what ? what : "list", bad);
     }
     *offs = o;
@@ -688,7 +691,7 @@ static ump_status missing(const foam_dict *d, const char *key, ump_err *err)
 {
     char path[512];
     foam_dict_path(d, path, sizeof path);
-    return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: keyword '%s' is missing in %s%s%s",
+    return FOAM_FAIL(err, UMP_ERR_INPUT, "%s:%d: keyword '%s' is missing in %s%s%s",
                     d && d->file ? d->file : "?", d ? d->line : 0, key,
                     path[0] ? "dictionary '" : "the top-level dictionary", path,
                     path[0] ? "'" : "");
@@ -700,7 +703,7 @@ static ump_status primitive(const foam_dict *d, const char *key, const foam_entr
 {
     *e = foam_dict_find(d, key, 0);
     if (*e && (*e)->dict)
-        return UMP_FAIL(err, UMP_ERR_PARSE, "%s:%d: keyword '%s': expected a value, found a "
+        return FOAM_FAIL(err, UMP_ERR_PARSE, "%s:%d: keyword '%s': expected a value, found a "
                         "dictionary", (*e)->file, (*e)->line, key);
     return UMP_OK;
 }
@@ -713,7 +716,7 @@ static ump_status entry_error(const foam_entry *e, const char *key, const char *
         snprintf(t, sizeof t, "nothing");
     else
         foam_tok_str(&e->tok[0], t, sizeof t);
-    return UMP_FAIL(err, UMP_ERR_PARSE, "%s:%d: keyword '%s': expected %s, found %s%s", e->file,
+    return FOAM_FAIL(err, UMP_ERR_PARSE, "%s:%d: keyword '%s': expected %s, found %s%s", e->file,
                     e->line, key, expected, t, e->ntok > 1 ? " ..." : "");
 }
 
@@ -847,6 +850,90 @@ ump_status foam_get_vector(const foam_dict *d, const char *key, double out[3], u
     return UMP_OK;
 }
 
+/* SI unit names OpenFOAM accepts inside [ ] (those with factor 1 only):
+ * exponents of kg m s K mol A cd. */
+static int unit_dims(const char *u, double d[7])
+{
+    static const struct { const char *name; signed char e[7]; } units[] = {
+        {"kg", {1, 0, 0, 0, 0, 0, 0}},   {"m", {0, 1, 0, 0, 0, 0, 0}},
+        {"s", {0, 0, 1, 0, 0, 0, 0}},    {"K", {0, 0, 0, 1, 0, 0, 0}},
+        {"mol", {0, 0, 0, 0, 1, 0, 0}},  {"A", {0, 0, 0, 0, 0, 1, 0}},
+        {"cd", {0, 0, 0, 0, 0, 0, 1}},   {"N", {1, 1, -2, 0, 0, 0, 0}},
+        {"Pa", {1, -1, -2, 0, 0, 0, 0}}, {"J", {1, 2, -2, 0, 0, 0, 0}},
+        {"W", {1, 2, -3, 0, 0, 0, 0}},   {"Hz", {0, 0, -1, 0, 0, 0, 0}},
+        {"C", {0, 0, 1, 0, 0, 1, 0}},    {"V", {1, 2, -3, 0, 0, -1, 0}},
+    };
+    for (size_t i = 0; i < sizeof units / sizeof units[0]; i++)
+        if (strcmp(u, units[i].name) == 0) {
+            for (int k = 0; k < 7; k++)
+                d[k] = units[i].e[k];
+            return 1;
+        }
+    return 0;
+}
+
+/* [M L T Theta N I J] (7 or 5 numbers) or unit names such as [kg/m^3],
+ * [m s^-1], [W/m/K], [1/K]; *p is just past '['. */
+static int read_dims(const foam_token *t, size_t nt, size_t *p, double dv[7])
+{
+    size_t q = *p;
+    int k = 0;
+    double x;
+    while (k < 7 && read_number(t, nt, &q, &x))
+        dv[k++] = x;
+    if ((k == 7 || k == 5) && is_punct(t, nt, q, ']')) {
+        for (int i = k; i < 7; i++)
+            dv[i] = 0;
+        *p = q + 1;
+        return 1;
+    }
+    for (int i = 0; i < 7; i++)
+        dv[i] = 0;
+    q = *p;
+    double sign = 1;
+    int any = 0;
+    for (;;) {
+        if (is_punct(t, nt, q, ']')) {
+            *p = q + 1;
+            return any;
+        }
+        if (is_punct(t, nt, q, '/')) {
+            sign = -1;
+            q++;
+            continue;
+        }
+        if (is_punct(t, nt, q, '*')) {
+            q++;
+            continue;
+        }
+        if (q < nt && t[q].type == FOAM_TOK_LABEL && t[q].v.label == 1) {
+            sign = 1;
+            any = 1;
+            q++;
+            continue;
+        }
+        if (q >= nt || t[q].type != FOAM_TOK_WORD)
+            return 0;
+        char name[32];
+        const char *w = t[q].v.str, *caret = strchr(w, '^');
+        size_t n = caret ? (size_t)(caret - w) : strlen(w);
+        if (n == 0 || n >= sizeof name)
+            return 0;
+        memcpy(name, w, n);
+        name[n] = '\0';
+        double u[7], e = 1;
+        if (!unit_dims(name, u))
+            return 0;
+        if (caret && !word_number(caret + 1, &e))
+            return 0;
+        for (int i = 0; i < 7; i++)
+            dv[i] += sign * e * u[i];
+        sign = 1;
+        any = 1;
+        q++;
+    }
+}
+
 ump_status foam_get_dimensioned(const foam_dict *d, const char *key, double *value,
                                 double dims[7], ump_err *err)
 {
@@ -856,23 +943,16 @@ ump_status foam_get_dimensioned(const foam_dict *d, const char *key, double *val
         return missing(d, key, err);
     const foam_token *t = e->tok;
     size_t nt = e->ntok, p = 0;
-    double dv[7] = {0, 0, 0, 0, 0, 0, 0};
+    double dv[7] = {0, 0, 0, 0, 0, 0, 0}, v;
     /* optional name, optional [dims], then the value */
     if (p < nt && (t[p].type == FOAM_TOK_WORD || t[p].type == FOAM_TOK_STRING) &&
-        !word_number(t[p].v.str, &dv[0]))
+        !word_number(t[p].v.str, &v))
         p++;
-    dv[0] = 0;
     if (is_punct(t, nt, p, '[')) {
         p++;
-        int k = 0;
-        double x;
-        while (k < 7 && read_number(t, nt, &p, &x))
-            dv[k++] = x;
-        if ((k != 7 && k != 5) || !is_punct(t, nt, p, ']'))
-            return entry_error(e, key, "dimensions [M L T Theta N I J]", err);
-        p++;
+        if (!read_dims(t, nt, &p, dv))
+            return entry_error(e, key, "dimensions [M L T Theta N I J] or SI unit names", err);
     }
-    double v;
     if (!read_number(t, nt, &p, &v) || p != nt)
         return entry_error(e, key, "a dimensioned scalar ([dims] value)", err);
     *value = v;

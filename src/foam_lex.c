@@ -16,6 +16,15 @@
 #include <sys/stat.h>
 #include <zlib.h>
 
+ump_status foam_oneline(ump_err *err, ump_status rc)
+{
+    if (err && rc != UMP_OK)
+        for (char *c = err->msg; *c; c++)
+            if ((unsigned char)*c < 32 || *c == 127)
+                *c = ' ';
+    return rc;
+}
+
 /* ---- arena --------------------------------------------------------------- */
 
 /* Blocks are allocated with this many bytes of payload; larger requests get
@@ -41,12 +50,12 @@ struct foam_arena {
 /* Header size rounded so that the payload is ARENA_ALIGN aligned. */
 #define BLK_HDR (((sizeof(arena_blk) + ARENA_ALIGN - 1) / ARENA_ALIGN) * ARENA_ALIGN)
 
-foam_arena *arena_new(void)
+foam_arena *foam_arena_new(void)
 {
     return ump_alloc_array(1, sizeof(foam_arena));
 }
 
-void arena_free(foam_arena *a)
+void foam_arena_free(foam_arena *a)
 {
     if (!a)
         return;
@@ -62,7 +71,7 @@ void arena_free(foam_arena *a)
     free(a);
 }
 
-void *arena_alloc(foam_arena *a, size_t n, size_t size)
+void *foam_arena_alloc(foam_arena *a, size_t n, size_t size)
 {
     if (size != 0 && n > SIZE_MAX / size)
         return NULL;
@@ -102,9 +111,9 @@ void *arena_alloc(foam_arena *a, size_t n, size_t size)
     return p;
 }
 
-char *arena_strndup(foam_arena *a, const char *s, size_t n)
+char *foam_arena_strndup(foam_arena *a, const char *s, size_t n)
 {
-    char *d = arena_alloc(a, n + 1, 1);
+    char *d = foam_arena_alloc(a, n + 1, 1);
     if (d) {
         if (n)
             memcpy(d, s, n);
@@ -113,9 +122,9 @@ char *arena_strndup(foam_arena *a, const char *s, size_t n)
     return d;
 }
 
-int arena_adopt(foam_arena *a, void *p, void (*fn)(void *))
+int foam_arena_adopt(foam_arena *a, void *p, void (*fn)(void *))
 {
-    arena_cleanup *c = arena_alloc(a, 1, sizeof *c);
+    arena_cleanup *c = foam_arena_alloc(a, 1, sizeof *c);
     if (!c) {
         fn(p);
         return 0;
@@ -158,7 +167,7 @@ static int is_number_char(int c)
 
 /* ---- lexer ----------------------------------------------------------------- */
 
-void lex_init(foam_lexer *lx, const char *buf, size_t len, const char *file,
+void foam_lex_init(foam_lexer *lx, const char *buf, size_t len, const char *file,
               foam_arena *a, ump_err *err)
 {
     memset(lx, 0, sizeof *lx);
@@ -172,7 +181,7 @@ void lex_init(foam_lexer *lx, const char *buf, size_t len, const char *file,
     lx->err = err;
 }
 
-int lex_is_eof(const foam_token *t)
+int foam_lex_is_eof(const foam_token *t)
 {
     return t->type == FOAM_TOK_PUNCT && t->v.punct == 0;
 }
@@ -202,7 +211,7 @@ static ump_status skip_blank(foam_lexer *lx)
                 if (i + 1 >= n) {
                     lx->pos = n;
                     lx->line = line;
-                    return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                    return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                                     "%s:%d: unterminated /* comment, found end of file",
                                     lx->file, start);
                 }
@@ -225,18 +234,20 @@ static ump_status skip_blank(foam_lexer *lx)
 
 static ump_status nomem(foam_lexer *lx)
 {
-    return UMP_FAIL(lx->err, UMP_ERR_NOMEM, "%s:%d: out of memory", lx->file, lx->line);
+    return FOAM_FAIL(lx->err, UMP_ERR_NOMEM, "%s:%d: out of memory", lx->file, lx->line);
 }
 
 static ump_status make_word(foam_lexer *lx, size_t start, size_t end, foam_token *t)
 {
     t->type = FOAM_TOK_WORD;
-    t->v.str = arena_strndup(lx->arena, lx->buf + start, end - start);
+    t->v.str = foam_arena_strndup(lx->arena, lx->buf + start, end - start);
     return t->v.str ? UMP_OK : nomem(lx);
 }
 
 /* A word: word characters, keeping balanced '(' ')' (div(phi,U)); an
- * unmatched ')' ends it. Returns the end position. */
+ * unmatched ')' ends it, and so does a ']' outside parentheses (ISstream
+ * keeps it, but then "[kg/m^3]" would leave the ']' inside the word "m^3]";
+ * OpenFOAM's dimensionSet reader splits it off again). Returns the end. */
 static size_t scan_word(const foam_lexer *lx, size_t i, int allow_slash)
 {
     const char *b = lx->buf;
@@ -247,6 +258,8 @@ static size_t scan_word(const foam_lexer *lx, size_t i, int allow_slash)
             break;
         if (c == '(')
             depth++;
+        else if (c == ']' && depth == 0)
+            break; /* closes a dimension set: [kg/m^3] */
         else if (c == ')') {
             if (depth == 0)
                 break;
@@ -280,7 +293,7 @@ static ump_status lex_string(foam_lexer *lx, foam_token *t)
             escaped = 0;
         } else if (c == '\n') {
             if (!escaped)
-                return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                                 "%s:%d: unterminated string (newline inside \"...\")",
                                 lx->file, start_line);
             escaped = 0;
@@ -289,10 +302,10 @@ static ump_status lex_string(foam_lexer *lx, foam_token *t)
         }
     }
     if (!found)
-        return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+        return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                         "%s:%d: unterminated string, found end of file", lx->file,
                         start_line);
-    char *s = arena_alloc(lx->arena, end - lx->pos, 1);
+    char *s = foam_arena_alloc(lx->arena, end - lx->pos, 1);
     if (!s)
         return nomem(lx);
     size_t o = 0;
@@ -328,7 +341,7 @@ static ump_status lex_verbatim(foam_lexer *lx, foam_token *t)
     for (; i + 1 < n; i++) {
         if (b[i] == '#' && b[i + 1] == '}') {
             t->type = FOAM_TOK_STRING;
-            t->v.str = arena_strndup(lx->arena, b + lx->pos + 2, i - lx->pos - 2);
+            t->v.str = foam_arena_strndup(lx->arena, b + lx->pos + 2, i - lx->pos - 2);
             if (!t->v.str)
                 return nomem(lx);
             lx->pos = i + 2;
@@ -338,7 +351,7 @@ static ump_status lex_verbatim(foam_lexer *lx, foam_token *t)
         if (b[i] == '\n')
             line++;
     }
-    return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+    return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                     "%s:%d: unterminated #{ verbatim block, found end of file", lx->file,
                     lx->line);
 }
@@ -360,7 +373,7 @@ static ump_status lex_number(foam_lexer *lx, foam_token *t)
         return UMP_OK;
     }
     if (len >= 128)
-        return UMP_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: number too long (%zu characters)",
+        return FOAM_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: number too long (%zu characters)",
                         lx->file, lx->line, len);
     int neg = b[s] == '-';
     int aslabel = b[s] != '.' && len > (size_t)neg;
@@ -401,7 +414,7 @@ static ump_status lex_number(foam_lexer *lx, foam_token *t)
     return make_word(lx, s, i, t);
 }
 
-ump_status lex_next(foam_lexer *lx, foam_token *t)
+ump_status foam_lex_next(foam_lexer *lx, foam_token *t)
 {
     if (lx->has_back) {
         *t = lx->back;
@@ -433,12 +446,25 @@ ump_status lex_next(foam_lexer *lx, foam_token *t)
     if (c == '#') {
         if (next == '{')
             return lex_verbatim(lx, t);
-        if (next < 0 || !is_word_char(next))
-            return UMP_FAIL(lx->err, UMP_ERR_PARSE,
-                            "%s:%d: expected a directive name after '#'", lx->file, lx->line);
-        size_t e = scan_word(lx, p + 1, 0);
+        /* ISstream reads the next non-blank character: "# include" works */
+        lx->pos++;
+        UMP_CALL(skip_blank(lx));
+        size_t q = lx->pos;
+        int nc = q < lx->len ? (unsigned char)b[q] : -1;
+        if (nc < 0 || !is_word_char(nc) || nc == '#')
+            return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
+                            "%s:%d: expected a directive name after '#'", lx->file, t->line);
+        size_t e = scan_word(lx, q, 0);
+        char *w = foam_arena_alloc(lx->arena, e - q + 2, 1);
+        if (!w)
+            return nomem(lx);
+        w[0] = '#';
+        memcpy(w + 1, b + q, e - q);
+        w[e - q + 1] = '\0';
+        t->type = FOAM_TOK_WORD;
+        t->v.str = w;
         lx->pos = e;
-        return make_word(lx, p, e, t);
+        return UMP_OK;
     }
     if (c == '$') {
         if (next == '{') {
@@ -454,49 +480,49 @@ ump_status lex_next(foam_lexer *lx, foam_token *t)
                     break;
             }
             if (i >= lx->len || b[i] != '}')
-                return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                                 "%s:%d: expected '}' closing '${', found %s", lx->file,
                                 lx->line, i >= lx->len ? "end of file" : "end of line");
             lx->pos = i + 1;
             return make_word(lx, p, i + 1, t);
         }
         if (next < 0 || !(is_word_char(next) || next == '/'))
-            return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                             "%s:%d: expected a variable name after '$'", lx->file, lx->line);
         size_t e = scan_word(lx, p + 1, 1);
         if (e == p + 1)
-            return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                             "%s:%d: expected a variable name after '$'", lx->file, lx->line);
         lx->pos = e;
         return make_word(lx, p, e, t);
     }
     if (!is_word_char(c))
-        return UMP_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: unexpected character '%c'",
+        return FOAM_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: unexpected character '%c'",
                         lx->file, lx->line, c);
     size_t e = scan_word(lx, p, 0);
     lx->pos = e;
     return make_word(lx, p, e, t);
 }
 
-ump_status lex_peek(foam_lexer *lx, foam_token *t)
+ump_status foam_lex_peek(foam_lexer *lx, foam_token *t)
 {
     if (lx->has_back) {
         *t = lx->back;
         return UMP_OK;
     }
-    UMP_CALL(lex_next(lx, t));
+    UMP_CALL(foam_lex_next(lx, t));
     lx->back = *t;
     lx->has_back = 1;
     return UMP_OK;
 }
 
-void lex_unget(foam_lexer *lx, const foam_token *t)
+void foam_lex_unget(foam_lexer *lx, const foam_token *t)
 {
     lx->back = *t;
     lx->has_back = 1;
 }
 
-ump_status lex_peek_char(foam_lexer *lx, int *c)
+ump_status foam_lex_peek_char(foam_lexer *lx, int *c)
 {
     UMP_CALL(skip_blank(lx));
     *c = lx->pos < lx->len ? (unsigned char)lx->buf[lx->pos] : -1;
@@ -521,14 +547,14 @@ static int host_is_le(void)
     return c == 1;
 }
 
-ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line,
+ump_status foam_lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line,
                     foam_token *out)
 {
     if (lx->has_back)
-        return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+        return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                         "%s:%d: internal error: binary list after look-ahead", lx->file, line);
     if (n < 0)
-        return UMP_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: negative list size %lld",
+        return FOAM_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: negative list size %lld",
                         lx->file, line, (long long)n);
     memset(out, 0, sizeof *out);
     out->type = FOAM_TOK_BLOB;
@@ -537,17 +563,17 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
     out->v.blob.ncomp = ncomp;
     out->v.blob.is_label = is_label;
     int c;
-    UMP_CALL(lex_peek_char(lx, &c));
+    UMP_CALL(foam_lex_peek_char(lx, &c));
     if (n == 0) {
         /* "0" alone, or "0 ( )" / "0()" */
-        out->v.blob.data = arena_alloc(lx->arena, 1, sizeof(double));
+        out->v.blob.data = foam_arena_alloc(lx->arena, 1, sizeof(double));
         if (!out->v.blob.data)
             return nomem(lx);
         if (c == '(') {
             lx->pos++;
-            UMP_CALL(lex_peek_char(lx, &c));
+            UMP_CALL(foam_lex_peek_char(lx, &c));
             if (c != ')')
-                return UMP_FAIL(lx->err, UMP_ERR_PARSE,
+                return FOAM_FAIL(lx->err, UMP_ERR_PARSE,
                                 "%s:%d: expected ')' closing empty list, found %s",
                                 lx->file, lx->line, c < 0 ? "end of file" : "other data");
             lx->pos++;
@@ -555,7 +581,7 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
         return UMP_OK;
     }
     if (c != '(')
-        return UMP_FAIL(lx->err, c < 0 ? UMP_ERR_IO : UMP_ERR_PARSE,
+        return FOAM_FAIL(lx->err, c < 0 ? UMP_ERR_IO : UMP_ERR_PARSE,
                         "%s:%d: expected '(' starting binary list of %lld elements, found %s",
                         lx->file, lx->line, (long long)n,
                         c < 0 ? "end of file (file cut short)" : "other data");
@@ -564,13 +590,13 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
     size_t avail = lx->len - lx->pos;
     size_t per = (size_t)csize * (size_t)ncomp;
     if ((uint64_t)n > (uint64_t)(avail / per))
-        return UMP_FAIL(lx->err, UMP_ERR_IO,
+        return FOAM_FAIL(lx->err, UMP_ERR_IO,
                         "%s:%d: binary list of %lld elements cut short (%zu bytes left, "
                         "%d-byte components)",
                         lx->file, line, (long long)n, avail, csize);
     size_t cnt = (size_t)n * (size_t)ncomp;
     const unsigned char *src = (const unsigned char *)lx->buf + lx->pos;
-    void *data = arena_alloc(lx->arena, cnt, 8);
+    void *data = foam_arena_alloc(lx->arena, cnt, 8);
     if (!data)
         return nomem(lx);
     int le = host_is_le();
@@ -611,9 +637,9 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
     lx->pos += cnt * (size_t)csize;
     out->v.blob.n = (size_t)n;
     out->v.blob.data = data;
-    UMP_CALL(lex_peek_char(lx, &c));
+    UMP_CALL(foam_lex_peek_char(lx, &c));
     if (c != ')')
-        return UMP_FAIL(lx->err, c < 0 ? UMP_ERR_IO : UMP_ERR_PARSE,
+        return FOAM_FAIL(lx->err, c < 0 ? UMP_ERR_IO : UMP_ERR_PARSE,
                         "%s:%d: expected ')' after binary list of %lld elements, found %s",
                         lx->file, lx->line, (long long)n,
                         c < 0 ? "end of file (file cut short)" : "other data");
@@ -621,7 +647,7 @@ ump_status lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int line
     return UMP_OK;
 }
 
-int list_type_ncomp(const char *w, int *is_label)
+int foam_list_type_ncomp(const char *w, int *is_label)
 {
     static const struct { const char *name; int ncomp, label; } types[] = {
         {"List<label>", 1, 1},         {"List<scalar>", 1, 0},
@@ -647,7 +673,7 @@ static int is_regular(const char *path)
     return stat(path, &st) == 0 && S_ISREG(st.st_mode);
 }
 
-char *resolve_gz(const char *path)
+char *foam_resolve_gz(const char *path)
 {
     if (is_regular(path))
         return ump_strdup(path);
@@ -665,39 +691,39 @@ char *resolve_gz(const char *path)
 
 int foam_file_exists(const char *path)
 {
-    char *p = path ? resolve_gz(path) : NULL;
+    char *p = path ? foam_resolve_gz(path) : NULL;
     free(p);
     return p != NULL;
 }
 
 /* zlib's gzread passes plain files through unchanged, so one reader serves
  * both NAME and NAME.gz. */
-ump_status read_whole_file(const char *path, char **out, size_t *outlen, ump_err *err)
+ump_status foam_read_whole_file(const char *path, char **out, size_t *outlen, ump_err *err)
 {
     *out = NULL;
     *outlen = 0;
     gzFile gz = gzopen(path, "rb");
     if (!gz)
-        return UMP_FAIL(err, UMP_ERR_IO, "cannot open %s: %s", path,
+        return FOAM_FAIL(err, UMP_ERR_IO, "cannot open %s: %s", path,
                         errno ? strerror(errno) : "gzopen failed");
     size_t cap = 1 << 16, len = 0;
     char *buf = ump_alloc_array(cap, 1);
     if (!buf) {
         gzclose(gz);
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+        return FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
     }
     for (;;) {
         if (cap - len < 2) {
             if (cap > SIZE_MAX / 2) {
                 free(buf);
                 gzclose(gz);
-                return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: file too large", path);
+                return FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: file too large", path);
             }
             char *nb = ump_realloc_array(buf, cap * 2, 1);
             if (!nb) {
                 free(buf);
                 gzclose(gz);
-                return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+                return FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
             }
             buf = nb;
             cap *= 2;
@@ -709,11 +735,11 @@ ump_status read_whole_file(const char *path, char **out, size_t *outlen, ump_err
         if (got < 0) {
             int zerr;
             const char *msg = gzerror(gz, &zerr);
-            UMP_FAIL(err, UMP_ERR_IO, "cannot read %s: %s", path,
-                     zerr == Z_ERRNO ? strerror(errno) : msg);
+            ump_status rc = FOAM_FAIL(err, UMP_ERR_IO, "cannot read %s: %s", path,
+                                      zerr == Z_ERRNO ? strerror(errno) : msg);
             free(buf);
             gzclose(gz);
-            return err ? err->code : UMP_ERR_IO;
+            return rc;
         }
         if (got == 0)
             break;
@@ -726,7 +752,7 @@ ump_status read_whole_file(const char *path, char **out, size_t *outlen, ump_err
     int rc = gzclose_r(gz);
     if ((zerr != Z_OK && zerr != Z_STREAM_END) || rc == Z_BUF_ERROR || rc == Z_ERRNO) {
         free(buf);
-        return UMP_FAIL(err, UMP_ERR_IO, "cannot read %s: %s", path,
+        return FOAM_FAIL(err, UMP_ERR_IO, "cannot read %s: %s", path,
                         rc == Z_BUF_ERROR ? "compressed data cut short" : "read error");
     }
     buf[len] = '\0';

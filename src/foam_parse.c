@@ -39,17 +39,18 @@ enum { MODE_ENTRY, MODE_EOF };
 
 static ump_status parse_entries(parser *p, foam_lexer *lx, foam_dict *d, int until_brace,
                                 int is_include, int open_line);
+static int pattern_compile(const char *pattern, regex_t *rx);
 static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mode,
                                const char *key, int keyline);
 
 static ump_status oom(parser *p, const char *file, int line)
 {
-    return UMP_FAIL(p->err, UMP_ERR_NOMEM, "%s:%d: out of memory", file, line);
+    return FOAM_FAIL(p->err, UMP_ERR_NOMEM, "%s:%d: out of memory", file, line);
 }
 
 static void tokstr(const foam_token *t, char *buf, size_t len)
 {
-    if (lex_is_eof(t))
+    if (foam_lex_is_eof(t))
         snprintf(buf, len, "end of file");
     else
         foam_tok_str(t, buf, len);
@@ -58,7 +59,7 @@ static void tokstr(const foam_token *t, char *buf, size_t len)
 static ump_status spend(parser *p, size_t n, const foam_token *where)
 {
     if (n > p->budget)
-        return UMP_FAIL(p->err, UMP_ERR_INPUT,
+        return FOAM_FAIL(p->err, UMP_ERR_INPUT,
                         "%s:%d: macro expansion too large (recursive or exponential $var use?)",
                         where->file, where->line);
     p->budget -= n;
@@ -94,7 +95,7 @@ static uint32_t hash_key(const char *s, size_t n)
 static foam_dict *new_dict(parser *p, foam_dict *parent, const char *name, const char *file,
                            int line)
 {
-    dict_impl *di = arena_alloc(p->a, 1, sizeof *di);
+    foam_dict_impl *di = foam_arena_alloc(p->a, 1, sizeof *di);
     if (!di)
         return NULL;
     di->pub.parent = parent;
@@ -113,7 +114,7 @@ static int key_eq(const char *key, const char *s, size_t n)
  * as OpenFOAM's hashed look-up does), or -1. */
 static long find_exact_n(const foam_dict *d, const char *s, size_t n)
 {
-    const dict_impl *di = (const dict_impl *)d;
+    const foam_dict_impl *di = (const foam_dict_impl *)d;
     if (di->hcap) {
         size_t m = di->hcap - 1, h = hash_key(s, n) & m;
         while (di->hidx[h]) {
@@ -136,7 +137,7 @@ static long find_exact(const foam_dict *d, const char *key)
 }
 
 /* (Re)build the hash index once a dictionary is big enough to need one. */
-static int rebuild_index(parser *p, dict_impl *di)
+static int rebuild_index(parser *p, foam_dict_impl *di)
 {
     foam_dict *d = &di->pub;
     if (d->n < 8) {
@@ -147,7 +148,7 @@ static int rebuild_index(parser *p, dict_impl *di)
     size_t cap = 16;
     while (cap < d->n * 2)
         cap *= 2;
-    uint32_t *h = arena_alloc(p->a, cap, sizeof *h);
+    uint32_t *h = foam_arena_alloc(p->a, cap, sizeof *h);
     if (!h)
         return 0;
     for (size_t i = 0; i < d->n; i++) {
@@ -164,12 +165,12 @@ static int rebuild_index(parser *p, dict_impl *di)
 /* Append without checking for an existing key. */
 static ump_status dict_append(parser *p, foam_dict *d, const foam_entry *e)
 {
-    dict_impl *di = (dict_impl *)d;
+    foam_dict_impl *di = (foam_dict_impl *)d;
     if (d->n >= UINT32_MAX - 1)
-        return UMP_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: too many entries", e->file, e->line);
+        return FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: too many entries", e->file, e->line);
     if (d->n == d->cap) {
         size_t nc = d->cap ? d->cap * 2 : 8;
-        foam_entry *ne = arena_alloc(p->a, nc, sizeof *ne);
+        foam_entry *ne = foam_arena_alloc(p->a, nc, sizeof *ne);
         if (!ne)
             return oom(p, e->file, e->line);
         if (d->n)
@@ -191,16 +192,6 @@ static ump_status dict_append(parser *p, foam_dict *d, const foam_entry *e)
     return UMP_OK;
 }
 
-static void dict_remove_at(parser *p, foam_dict *d, size_t i)
-{
-    dict_impl *di = (dict_impl *)d;
-    if (d->e[i].is_pattern)
-        di->npat--;
-    memmove(d->e + i, d->e + i + 1, (d->n - i - 1) * sizeof *d->e);
-    d->n--;
-    if (!rebuild_index(p, di))
-        di->hcap = 0; /* fall back to linear search */
-}
 
 static ump_status dict_merge(parser *p, foam_dict *dst, foam_dict *src);
 
@@ -219,7 +210,7 @@ static ump_status dict_add(parser *p, foam_dict *d, foam_entry *e)
     foam_entry *old = &d->e[i];
     if (old->dict && e->dict)
         return dict_merge(p, old->dict, e->dict);
-    dict_impl *di = (dict_impl *)d;
+    foam_dict_impl *di = (foam_dict_impl *)d;
     di->npat -= (size_t)old->is_pattern;
     di->npat += (size_t)e->is_pattern;
     if (e->dict)
@@ -232,7 +223,7 @@ static ump_status dict_add(parser *p, foam_dict *d, foam_entry *e)
 static ump_status dict_merge(parser *p, foam_dict *dst, foam_dict *src)
 {
     if (++p->depth > MAX_DICT_DEPTH)
-        return UMP_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: dictionaries nested too deeply",
+        return FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: dictionaries nested too deeply",
                         src->file, src->line);
     for (size_t i = 0; i < src->n; i++) {
         foam_entry e = src->e[i];
@@ -252,14 +243,14 @@ static foam_dict *dict_copy(parser *p, const foam_dict *src, foam_dict *parent,
 {
     *rc = UMP_OK;
     if (++p->depth > MAX_DICT_DEPTH) {
-        *rc = UMP_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: dictionaries nested too deeply",
+        *rc = FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: dictionaries nested too deeply",
                        where->file, where->line);
         return NULL;
     }
     if ((*rc = spend(p, src->n + 1, where)) != UMP_OK)
         return NULL;
     foam_dict *d = new_dict(p, parent, src->name, src->file, src->line);
-    foam_entry *e = src->n ? arena_alloc(p->a, src->n, sizeof *e) : NULL;
+    foam_entry *e = src->n ? foam_arena_alloc(p->a, src->n, sizeof *e) : NULL;
     if (!d || (src->n && !e)) {
         *rc = oom(p, where->file, where->line);
         return NULL;
@@ -274,8 +265,8 @@ static foam_dict *dict_copy(parser *p, const foam_dict *src, foam_dict *parent,
     }
     d->e = e;
     d->n = d->cap = src->n;
-    dict_impl *di = (dict_impl *)d;
-    di->npat = ((const dict_impl *)src)->npat;
+    foam_dict_impl *di = (foam_dict_impl *)d;
+    di->npat = ((const foam_dict_impl *)src)->npat;
     if (!rebuild_index(p, di)) {
         *rc = oom(p, where->file, where->line);
         return NULL;
@@ -293,19 +284,30 @@ static const foam_dict *dict_top(const foam_dict *d)
 
 /* ---- variables ------------------------------------------------------------- */
 
-/* Entry named s[0..n) in d, optionally searching the parents. */
-static const foam_entry *find_var_n(const foam_dict *d, const char *s, size_t n, int recursive)
+/* Entry named s[0..n) in d, optionally searching the parents. Pattern
+ * keys match only when pat is set: v1912 expands "$var" in a value
+ * literally but resolves a "$var;" keyword with regular expressions too. */
+static const foam_entry *find_var_n(const foam_dict *d, const char *s, size_t n, int recursive,
+                                    int pat)
 {
     for (; d; d = recursive ? d->parent : NULL) {
         long i = find_exact_n(d, s, n);
         if (i >= 0)
             return &d->e[i];
+        if (pat && ((const foam_dict_impl *)d)->npat && n < 1024) {
+            char key[1024];
+            memcpy(key, s, n);
+            key[n] = '\0';
+            for (size_t k = d->n; k-- > 0;)
+                if (d->e[k].is_pattern && foam_pattern_match(d->e[k].key, key))
+                    return &d->e[k];
+        }
     }
     return NULL;
 }
 
 /* a.b.c relative to d; leading dots go up one scope per extra dot. */
-static const foam_entry *find_dot_scoped(const foam_dict *d, const char *s)
+static const foam_entry *find_dot_scoped(const foam_dict *d, const char *s, int pat)
 {
     for (;;) {
         if (!d || !*s)
@@ -324,14 +326,14 @@ static const foam_entry *find_dot_scoped(const foam_dict *d, const char *s)
         }
         const char *dot = strchr(s, '.');
         if (!dot)
-            return find_var_n(d, s, strlen(s), 0);
-        const foam_entry *e = find_var_n(d, s, (size_t)(dot - s), 0);
+            return find_var_n(d, s, strlen(s), 0, pat);
+        const foam_entry *e = find_var_n(d, s, (size_t)(dot - s), 0, pat);
         /* fall back to keys that contain dots: a.b, a.b.c, ... */
         while (!(e && e->dict)) {
             dot = strchr(dot + 1, '.');
             if (!dot)
-                return find_var_n(d, s, strlen(s), 0);
-            e = find_var_n(d, s, (size_t)(dot - s), 0);
+                return find_var_n(d, s, strlen(s), 0, pat);
+            e = find_var_n(d, s, (size_t)(dot - s), 0, pat);
         }
         d = e->dict;
         s = dot; /* ".rest": one dot, no scope change */
@@ -339,7 +341,7 @@ static const foam_entry *find_dot_scoped(const foam_dict *d, const char *s)
 }
 
 /* a/b, /a/b, ../a : slash-separated path of sub-dictionaries. */
-static const foam_entry *find_slash_scoped(const foam_dict *d, const char *s)
+static const foam_entry *find_slash_scoped(const foam_dict *d, const char *s, int pat)
 {
     if (*s == '/') {
         d = dict_top(d);
@@ -352,7 +354,7 @@ static const foam_entry *find_slash_scoped(const foam_dict *d, const char *s)
         if (!sl) {
             if (n == 0 || (n == 1 && s[0] == '.') || (n == 2 && s[0] == '.' && s[1] == '.'))
                 return NULL;
-            return find_var_n(d, s, n, 0);
+            return find_var_n(d, s, n, 0, pat);
         }
         if (n == 0 || (n == 1 && s[0] == '.')) {
             /* stay */
@@ -361,7 +363,7 @@ static const foam_entry *find_slash_scoped(const foam_dict *d, const char *s)
             if (!d)
                 return NULL;
         } else {
-            const foam_entry *e = find_var_n(d, s, n, 0);
+            const foam_entry *e = find_var_n(d, s, n, 0, pat);
             if (!e || !e->dict)
                 return NULL;
             d = e->dict;
@@ -370,35 +372,100 @@ static const foam_entry *find_slash_scoped(const foam_dict *d, const char *s)
     }
 }
 
-static const foam_entry *resolve_var(const foam_dict *ctx, const char *name)
+static const foam_entry *resolve_var(const foam_dict *ctx, const char *name, int pat)
 {
     if (strchr(name, '/'))
-        return find_slash_scoped(ctx, name);
+        return find_slash_scoped(ctx, name, pat);
     if (name[0] == ':' || name[0] == '^')
-        return find_dot_scoped(dict_top(ctx), name + 1);
+        return find_dot_scoped(dict_top(ctx), name + 1, pat);
     if (strchr(name, '.'))
-        return find_dot_scoped(ctx, name);
-    return find_var_n(ctx, name, strlen(name), 1);
+        return find_dot_scoped(ctx, name, pat);
+    return find_var_n(ctx, name, strlen(name), 1, pat);
 }
 
-/* Variable name of a $ token into buf ("$a" -> "a", "${a.b}" -> "a.b"). */
-static ump_status var_name(parser *p, const foam_token *t, char *buf, size_t len)
+static const foam_entry *resolve_var(const foam_dict *ctx, const char *name, int pat);
+
+/* Text of a primitive entry's single word/string/number token, for the
+ * recursive substitution ${..$x..}. */
+static int entry_word(const foam_entry *e, char *buf, size_t len)
+{
+    if (!e || e->dict || e->ntok != 1)
+        return 0;
+    const foam_token *t = &e->tok[0];
+    if (t->type == FOAM_TOK_WORD || t->type == FOAM_TOK_STRING)
+        snprintf(buf, len, "%s", t->v.str);
+    else if (t->type == FOAM_TOK_LABEL)
+        snprintf(buf, len, "%lld", (long long)t->v.label);
+    else
+        return 0;
+    return 1;
+}
+
+/* Variable name of a $ token into buf ("$a" -> "a", "${a.b}" -> "a.b").
+ * Inside ${...}, $x and ${x} are replaced first (v1912 recursive
+ * substitution, e.g. ${:$LESModel}). */
+static ump_status var_name(parser *p, foam_dict *ctx, const foam_token *t, char *buf,
+                           size_t len)
 {
     const char *s = t->v.str + 1;
     size_t n = strlen(s);
-    if (s[0] == '{') {
+    int braces = s[0] == '{';
+    if (braces) {
         if (s[1] == '{')
-            return UMP_FAIL(p->err, UMP_ERR_UNSUPPORTED,
+            return FOAM_FAIL(p->err, UMP_ERR_UNSUPPORTED,
                             "%s:%d: expressions ${{...}} are not supported", t->file, t->line);
         s++;
         n -= 2; /* lexer guarantees the closing '}' */
     }
     if (n == 0 || n >= len)
-        return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: bad variable name '%s'", t->file,
+        return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: bad variable name '%s'", t->file,
                         t->line, t->v.str);
-    memcpy(buf, s, n);
-    buf[n] = '\0';
+    if (!braces || !memchr(s, '$', n)) {
+        memcpy(buf, s, n);
+        buf[n] = '\0';
+        return UMP_OK;
+    }
+    size_t o = 0, i = 0;
+    while (i < n) {
+        if (s[i] != '$') {
+            if (o + 1 >= len)
+                goto toolong;
+            buf[o++] = s[i++];
+            continue;
+        }
+        char inner[256], val[1024];
+        size_t k = 0;
+        i++;
+        int br = i < n && s[i] == '{';
+        if (br)
+            i++;
+        while (i < n && k + 1 < sizeof inner &&
+               (br ? s[i] != '}' : (s[i] != '$' && s[i] != '{' && s[i] != '}')))
+            inner[k++] = s[i++];
+        if (br && i < n && s[i] == '}')
+            i++;
+        inner[k] = '\0';
+        const foam_entry *e = k ? resolve_var(ctx, inner, 0) : NULL;
+        const char *env = !e && k ? getenv(inner) : NULL;
+        if (e && !entry_word(e, val, sizeof val))
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE,
+                            "%s:%d: variable $%s in %s is not a single word", t->file, t->line,
+                            inner, t->v.str);
+        /* undefined: empty, as stringOps::inplaceExpand (then the outer
+         * look-up fails: an error in a value, ignored as a keyword) */
+        if (!e)
+            snprintf(val, sizeof val, "%s", env ? env : "");
+        size_t vl = strlen(val);
+        if (o + vl >= len)
+            goto toolong;
+        memcpy(buf + o, val, vl);
+        o += vl;
+    }
+    buf[o] = '\0';
     return UMP_OK;
+toolong:
+    return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: variable name too long in '%s'", t->file,
+                    t->line, t->v.str);
 }
 
 static int env_name_ok(const char *s)
@@ -417,8 +484,8 @@ static int env_name_ok(const char *s)
 static ump_status expand_var(parser *p, foam_dict *ctx, const foam_token *t)
 {
     char name[1024];
-    UMP_CALL(var_name(p, t, name, sizeof name));
-    const foam_entry *e = resolve_var(ctx, name);
+    UMP_CALL(var_name(p, ctx, t, name, sizeof name));
+    const foam_entry *e = resolve_var(ctx, name, 0);
     if (e && e->dict) {
         ump_status rc;
         foam_dict *c = dict_copy(p, e->dict, ctx, t, &rc);
@@ -437,15 +504,15 @@ static ump_status expand_var(parser *p, foam_dict *ctx, const foam_token *t)
     }
     const char *env = env_name_ok(name) ? getenv(name) : NULL;
     if (!env || !*env)
-        return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: undefined variable $%s", t->file,
+        return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: undefined variable $%s", t->file,
                         t->line, name);
     /* OpenFOAM tokenizes the environment value */
     foam_lexer el;
-    lex_init(&el, env, strlen(env), t->file, p->a, p->err);
+    foam_lex_init(&el, env, strlen(env), t->file, p->a, p->err);
     for (;;) {
         foam_token et;
-        UMP_CALL(lex_next(&el, &et));
-        if (lex_is_eof(&et))
+        UMP_CALL(foam_lex_next(&el, &et));
+        if (foam_lex_is_eof(&et))
             break;
         UMP_CALL(spend(p, 1, t));
         et.line = t->line;
@@ -524,7 +591,8 @@ static ump_status expand_name(parser *p, foam_dict *ctx, const foam_token *t, ch
 #define APPEND(str_, n_) do { \
         size_t n__ = (n_); \
         if (o + n__ >= len) \
-            return UMP_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: file name too long", t->file, t->line); \
+            return FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: file name too long", \
+                             t->file, t->line); \
         memcpy(out + o, (str_), n__); o += n__; out[o] = '\0'; \
     } while (0)
     static const char *const tags[] = {"<case>", "<system>", "<constant>"};
@@ -561,7 +629,7 @@ static ump_status expand_name(parser *p, foam_dict *ctx, const foam_token *t, ch
             while (nm[n] && nm[n] != '}')
                 n++;
             if (!nm[n])
-                return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected '}' in file name '%s'",
+                return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected '}' in file name '%s'",
                                 t->file, t->line, t->v.str);
         } else {
             while ((nm[n] >= 'a' && nm[n] <= 'z') || (nm[n] >= 'A' && nm[n] <= 'Z') ||
@@ -582,7 +650,7 @@ static ump_status expand_name(parser *p, foam_dict *ctx, const foam_token *t, ch
             APPEND(cd, strlen(cd));
             continue;
         }
-        const foam_entry *e = resolve_var(ctx, name);
+        const foam_entry *e = resolve_var(ctx, name, 0);
         if (e && !e->dict && e->ntok == 1 &&
             (e->tok[0].type == FOAM_TOK_WORD || e->tok[0].type == FOAM_TOK_STRING)) {
             APPEND(e->tok[0].v.str, strlen(e->tok[0].v.str));
@@ -590,7 +658,7 @@ static ump_status expand_name(parser *p, foam_dict *ctx, const foam_token *t, ch
         }
         const char *env = getenv(name);
         if (!env)
-            return UMP_FAIL(p->err, UMP_ERR_INPUT,
+            return FOAM_FAIL(p->err, UMP_ERR_INPUT,
                             "%s:%d: undefined variable $%s in file name '%s'", t->file, t->line,
                             name, t->v.str);
         APPEND(env, strlen(env));
@@ -617,7 +685,7 @@ static ump_status include_path(parser *p, foam_dict *ctx, const foam_token *dir_
             pcat(full, sizeof full, d, "/", name);
         }
         snprintf(tried, tlen, "%s", full);
-        *found = resolve_gz(full);
+        *found = foam_resolve_gz(full);
         return UMP_OK;
     }
     /* #includeEtc: the OpenFOAM etc directories, in order */
@@ -631,7 +699,7 @@ static ump_status include_path(parser *p, foam_dict *ctx, const foam_token *dir_
     pcat(dirs[nd++], sizeof dirs[0], "/usr/share/openfoam/etc", "", "");
     for (int i = 0; i < nd && !*found; i++) {
         if (pcat(full, sizeof full, dirs[i], "/", name))
-            *found = resolve_gz(full);
+            *found = foam_resolve_gz(full);
     }
     snprintf(tried, tlen, "'%s' in $FOAM_ETC, $WM_PROJECT_DIR/etc and /usr/share/openfoam/etc",
              name);
@@ -654,18 +722,18 @@ static ump_status include_open(parser *p, foam_lexer *lx, foam_dict *ctx,
     int optional = strcmp(dn, "#includeIfPresent") == 0 || strcmp(dn, "#sinclude") == 0;
     memset(src, 0, sizeof *src);
     foam_token nt;
-    UMP_CALL(lex_next(lx, &nt));
+    UMP_CALL(foam_lex_next(lx, &nt));
     if (nt.type != FOAM_TOK_STRING && nt.type != FOAM_TOK_WORD) {
         char tb[128];
         tokstr(&nt, tb, sizeof tb);
-        return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected a file name after %s, found %s",
+        return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected a file name after %s, found %s",
                         dtok->file, dtok->line, dn, tb);
     }
     if (p->flags & FOAM_PARSE_NO_INCLUDE)
-        return UMP_FAIL(p->err, UMP_ERR_UNSUPPORTED, "%s:%d: %s is disabled here", dtok->file,
+        return FOAM_FAIL(p->err, UMP_ERR_UNSUPPORTED, "%s:%d: %s is disabled here", dtok->file,
                         dtok->line, dn);
     if (p->incl_depth >= MAX_INCLUDE_DEPTH)
-        return UMP_FAIL(p->err, UMP_ERR_INPUT,
+        return FOAM_FAIL(p->err, UMP_ERR_INPUT,
                         "%s:%d: %s \"%s\": includes nested too deeply (recursive include?)",
                         dtok->file, dtok->line, dn, nt.v.str);
     char tried[8400];
@@ -675,22 +743,22 @@ static ump_status include_open(parser *p, foam_lexer *lx, foam_dict *ctx,
         if (optional)
             return UMP_OK;
         if (etc)
-            return UMP_FAIL(p->err, UMP_ERR_IO, "%s:%d: #includeEtc: cannot find %s",
+            return FOAM_FAIL(p->err, UMP_ERR_IO, "%s:%d: #includeEtc: cannot find %s",
                             dtok->file, dtok->line, tried);
-        return UMP_FAIL(p->err, UMP_ERR_IO, "%s:%d: %s: cannot open %s (nor %s.gz)",
+        return FOAM_FAIL(p->err, UMP_ERR_IO, "%s:%d: %s: cannot open %s (nor %s.gz)",
                         dtok->file, dtok->line, dn, tried, tried);
     }
-    src->file = arena_strndup(p->a, path, strlen(path));
+    src->file = foam_arena_strndup(p->a, path, strlen(path));
     if (!src->file) {
         free(path);
         return oom(p, dtok->file, dtok->line);
     }
     ump_err sub;
     memset(&sub, 0, sizeof sub);
-    ump_status rc = read_whole_file(path, &src->buf, &src->len, &sub);
+    ump_status rc = foam_read_whole_file(path, &src->buf, &src->len, &sub);
     free(path);
     if (rc != UMP_OK)
-        return UMP_FAIL(p->err, rc, "%s:%d: %s: %s", dtok->file, dtok->line, dn, sub.msg);
+        return FOAM_FAIL(p->err, rc, "%s:%d: %s: %s", dtok->file, dtok->line, dn, sub.msg);
     size_t extra = src->len > SIZE_MAX / 32 ? SIZE_MAX / 2 : src->len * 16;
     p->budget = p->budget > SIZE_MAX - extra ? SIZE_MAX : p->budget + extra;
     return UMP_OK;
@@ -705,7 +773,7 @@ static ump_status include_entries(parser *p, foam_lexer *lx, foam_dict *ctx,
     if (!src.buf)
         return UMP_OK;
     foam_lexer il;
-    lex_init(&il, src.buf, src.len, src.file, p->a, p->err);
+    foam_lex_init(&il, src.buf, src.len, src.file, p->a, p->err);
     p->incl_depth++;
     ump_status rc = parse_entries(p, &il, ctx, 0, 1, 0);
     p->incl_depth--;
@@ -722,7 +790,7 @@ static ump_status include_tokens(parser *p, foam_lexer *lx, foam_dict *ctx,
     if (!src.buf)
         return UMP_OK;
     foam_lexer il;
-    lex_init(&il, src.buf, src.len, src.file, p->a, p->err);
+    foam_lex_init(&il, src.buf, src.len, src.file, p->a, p->err);
     p->incl_depth++;
     ump_status rc = parse_tokens(p, &il, ctx, MODE_EOF, dtok->v.str, dtok->line);
     p->incl_depth--;
@@ -738,7 +806,7 @@ static int is_include_directive(const char *s)
 
 static ump_status unsupported_directive(parser *p, const foam_token *t)
 {
-    return UMP_FAIL(p->err, UMP_ERR_UNSUPPORTED,
+    return FOAM_FAIL(p->err, UMP_ERR_UNSUPPORTED,
                     "%s:%d: directive %s is not supported (umppmFoam evaluates no code "
                     "or expressions)",
                     t->file, t->line, t->v.str);
@@ -750,7 +818,7 @@ static ump_status parse_block(parser *p, foam_lexer *lx, foam_dict *parent, cons
                               int line, foam_dict **out)
 {
     if (p->depth >= MAX_DICT_DEPTH)
-        return UMP_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: dictionaries nested too deeply",
+        return FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: dictionaries nested too deeply",
                         lx->file, line);
     foam_dict *d = new_dict(p, parent, name, lx->file, line);
     if (!d)
@@ -773,20 +841,18 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
     int openline[MAX_PAREN_DEPTH];
     int depth = 0;
     size_t base = p->nstk;
-    char tb[128];
     for (;;) {
         foam_token t;
-        UMP_CALL(lex_next(lx, &t));
-        if (lex_is_eof(&t)) {
+        UMP_CALL(foam_lex_next(lx, &t));
+        if (foam_lex_is_eof(&t)) {
             if (depth > 0)
-                return UMP_FAIL(p->err, UMP_ERR_PARSE,
+                return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                 "%s:%d: expected '%c' closing '%c' opened at line %d, found end "
                                 "of file",
-                                lx->file, t.line, open[depth - 1] == '(' ? ')' :
-                                open[depth - 1] == '[' ? ']' : '}', open[depth - 1],
-                                openline[depth - 1]);
+                                lx->file, t.line, open[depth - 1] == '(' ? ')' : '}',
+                                open[depth - 1], openline[depth - 1]);
             if (mode == MODE_ENTRY)
-                return UMP_FAIL(p->err, UMP_ERR_PARSE,
+                return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                 "%s:%d: expected ';' ending entry '%s' (line %d), found end "
                                 "of file",
                                 lx->file, t.line, key, keyline);
@@ -796,11 +862,11 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
             char c = t.v.punct;
             if (c == ';' && depth == 0 && mode == MODE_ENTRY)
                 return UMP_OK;
-            if (c == '(' || c == '[' ||
+            if (c == '(' ||
                 (c == '{' && p->nstk > base && p->stk[p->nstk - 1].type == FOAM_TOK_LABEL)) {
                 /* '{' after a count: uniform list N{v} */
                 if (depth >= MAX_PAREN_DEPTH)
-                    return UMP_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: lists nested too deeply",
+                    return FOAM_FAIL(p->err, UMP_ERR_INPUT, "%s:%d: lists nested too deeply",
                                     t.file, t.line);
                 open[depth] = c;
                 openline[depth++] = t.line;
@@ -812,24 +878,24 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
                 UMP_CALL(parse_block(p, lx, ctx, nm, t.line, &sub));
                 t.type = FOAM_TOK_DICT;
                 t.v.dict = sub;
-            } else if (c == ')' || c == ']' || c == '}') {
-                char want = c == ')' ? '(' : c == ']' ? '[' : '{';
+            } else if (c == ')' || c == '}') {
+                /* like v1912's primitiveEntry, only ( ) and { } must balance */
+                char want = c == ')' ? '(' : '{';
                 if (depth == 0 || open[depth - 1] != want) {
                     if (depth == 0 && c == '}' && mode == MODE_ENTRY)
-                        return UMP_FAIL(p->err, UMP_ERR_PARSE,
+                        return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                         "%s:%d: expected ';' ending entry '%s' (line %d), "
                                         "found '}'",
                                         t.file, t.line, key, keyline);
                     if (depth == 0)
-                        return UMP_FAIL(p->err, UMP_ERR_PARSE,
+                        return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                         "%s:%d: unexpected '%c' (no matching '%c')", t.file,
                                         t.line, c, want);
-                    return UMP_FAIL(p->err, UMP_ERR_PARSE,
+                    return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                     "%s:%d: expected '%c' closing '%c' opened at line %d, "
                                     "found '%c'",
                                     t.file, t.line,
-                                    open[depth - 1] == '(' ? ')' :
-                                    open[depth - 1] == '[' ? ']' : '}',
+                                    open[depth - 1] == '(' ? ')' : '}',
                                     open[depth - 1], openline[depth - 1], c);
                 }
                 depth--;
@@ -851,18 +917,17 @@ static ump_status parse_tokens(parser *p, foam_lexer *lx, foam_dict *ctx, int mo
         if (t.type == FOAM_TOK_LABEL && lx->binary && p->nstk > base &&
             p->stk[p->nstk - 1].type == FOAM_TOK_WORD) {
             int is_label = 0;
-            int ncomp = list_type_ncomp(p->stk[p->nstk - 1].v.str, &is_label);
+            int ncomp = foam_list_type_ncomp(p->stk[p->nstk - 1].v.str, &is_label);
             int nc;
             if (ncomp > 0)
-                UMP_CALL(lex_peek_char(lx, &nc));
+                UMP_CALL(foam_lex_peek_char(lx, &nc));
             if (ncomp > 0 && nc != '{') {
                 foam_token bt;
-                UMP_CALL(lex_blob(lx, t.v.label, ncomp, is_label, t.line, &bt));
+                UMP_CALL(foam_lex_blob(lx, t.v.label, ncomp, is_label, t.line, &bt));
                 UMP_CALL(push_tok(p, &bt));
                 continue;
             }
         }
-        (void)tb;
         UMP_CALL(push_tok(p, &t));
     }
 }
@@ -874,7 +939,7 @@ static ump_status take_tokens(parser *p, size_t base, foam_entry *e)
     e->ntok = n;
     e->tok = NULL;
     if (n) {
-        e->tok = arena_alloc(p->a, n, sizeof *e->tok);
+        e->tok = foam_arena_alloc(p->a, n, sizeof *e->tok);
         if (!e->tok)
             return oom(p, e->file, e->line);
         memcpy(e->tok, p->stk + base, n * sizeof *e->tok);
@@ -885,37 +950,55 @@ static ump_status take_tokens(parser *p, size_t base, foam_entry *e)
 
 /* ---- directives in a dictionary --------------------------------------------- */
 
-static ump_status directive_remove(parser *p, foam_lexer *lx, foam_dict *d,
-                                   const foam_token *dt)
+/* Remove every entry whose key equals text or, for a quoted name, matches
+ * it as a pattern: one pass and one index rebuild, whatever the count. */
+static void remove_keys(parser *p, foam_dict *d, const char *text, int is_pattern)
+{
+    regex_t rx;
+    int have_rx = is_pattern && pattern_compile(text, &rx);
+    size_t o = 0;
+    foam_dict_impl *di = (foam_dict_impl *)d;
+    for (size_t i = 0; i < d->n; i++) {
+        const char *k = d->e[i].key;
+        int gone = strcmp(k, text) == 0 || (have_rx && regexec(&rx, k, 0, NULL, 0) == 0);
+        if (gone) {
+            if (d->e[i].is_pattern)
+                di->npat--;
+            continue;
+        }
+        d->e[o++] = d->e[i];
+    }
+    if (have_rx)
+        regfree(&rx);
+    if (o != d->n) {
+        d->n = o;
+        if (!rebuild_index(p, di))
+            di->hcap = 0; /* fall back to linear search */
+    }
+}
+
+static ump_status directive_remove(parser *p, foam_lexer *lx, foam_dict *d)
 {
     foam_token t;
-    UMP_CALL(lex_next(lx, &t));
+    UMP_CALL(foam_lex_next(lx, &t));
     int list = t.type == FOAM_TOK_PUNCT && t.v.punct == '(';
     for (;;) {
         if (list) {
-            UMP_CALL(lex_next(lx, &t));
+            UMP_CALL(foam_lex_next(lx, &t));
             if (t.type == FOAM_TOK_PUNCT && t.v.punct == ')')
                 return UMP_OK;
         }
-        if (t.type == FOAM_TOK_WORD) {
-            long i = find_exact(d, t.v.str);
-            if (i >= 0)
-                dict_remove_at(p, d, (size_t)i);
-        } else if (t.type == FOAM_TOK_STRING) {
-            for (size_t i = d->n; i-- > 0;)
-                if (strcmp(d->e[i].key, t.v.str) == 0 || pattern_match(t.v.str, d->e[i].key))
-                    dict_remove_at(p, d, i);
-        } else {
+        if (t.type != FOAM_TOK_WORD && t.type != FOAM_TOK_STRING) {
             char tb[128];
             tokstr(&t, tb, sizeof tb);
-            return UMP_FAIL(p->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                             "%s:%d: #remove: expected a keyword%s, found %s", t.file, t.line,
                             list ? " or ')'" : " or '('", tb);
         }
+        remove_keys(p, d, t.v.str, t.type == FOAM_TOK_STRING);
         if (!list)
             return UMP_OK;
     }
-    (void)dt;
 }
 
 static ump_status directive_dict(parser *p, foam_lexer *lx, foam_dict *d, const foam_token *t)
@@ -924,25 +1007,25 @@ static ump_status directive_dict(parser *p, foam_lexer *lx, foam_dict *d, const 
     if (is_include_directive(dn))
         return include_entries(p, lx, d, t);
     if (strcmp(dn, "#remove") == 0)
-        return directive_remove(p, lx, d, t);
+        return directive_remove(p, lx, d);
     if (strcmp(dn, "#inputMode") == 0) {
         foam_token m;
-        UMP_CALL(lex_next(lx, &m));
+        UMP_CALL(foam_lex_next(lx, &m));
         if (m.type != FOAM_TOK_WORD) {
             char tb[128];
             tokstr(&m, tb, sizeof tb);
-            return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: #inputMode: expected a mode, found %s",
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: #inputMode: expected a mode, found %s",
                             t->file, t->line, tb);
         }
         return UMP_OK;
     }
     if (strcmp(dn, "#includeFunc") == 0 || strcmp(dn, "#includeFunction") == 0) {
         foam_token a;
-        UMP_CALL(lex_next(lx, &a));
+        UMP_CALL(foam_lex_next(lx, &a));
         if (a.type != FOAM_TOK_WORD && a.type != FOAM_TOK_STRING) {
             char tb[128];
             tokstr(&a, tb, sizeof tb);
-            return UMP_FAIL(p->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                             "%s:%d: %s: expected a function name, found %s", t->file, t->line,
                             dn, tb);
         }
@@ -951,7 +1034,7 @@ static ump_status directive_dict(parser *p, foam_lexer *lx, foam_dict *d, const 
         e.key = "#includeFunc";
         e.file = t->file;
         e.line = t->line;
-        e.tok = arena_alloc(p->a, 1, sizeof *e.tok);
+        e.tok = foam_arena_alloc(p->a, 1, sizeof *e.tok);
         if (!e.tok)
             return oom(p, t->file, t->line);
         e.tok[0] = a;
@@ -967,17 +1050,17 @@ static ump_status directive_dict(parser *p, foam_lexer *lx, foam_dict *d, const 
 static ump_status var_keyword(parser *p, foam_lexer *lx, foam_dict *d, const foam_token *t)
 {
     char name[1024];
-    UMP_CALL(var_name(p, t, name, sizeof name));
-    const foam_entry *e = resolve_var(d, name);
+    UMP_CALL(var_name(p, d, t, name, sizeof name));
+    const foam_entry *e = resolve_var(d, name, 1);
     foam_token nt;
-    UMP_CALL(lex_peek(lx, &nt));
+    UMP_CALL(foam_lex_peek(lx, &nt));
     if (nt.type == FOAM_TOK_PUNCT && nt.v.punct == '{') {
         if (!e || e->dict || e->ntok < 1 ||
             (e->tok[0].type != FOAM_TOK_WORD && e->tok[0].type != FOAM_TOK_STRING))
-            return UMP_FAIL(p->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                             "%s:%d: $%s used as a keyword must name a word entry", t->file,
                             t->line, name);
-        (void)lex_next(lx, &nt);
+        (void)foam_lex_next(lx, &nt);
         foam_entry ne;
         memset(&ne, 0, sizeof ne);
         ne.key = e->tok[0].v.str;
@@ -990,7 +1073,7 @@ static ump_status var_keyword(parser *p, foam_lexer *lx, foam_dict *d, const foa
     if (!e)
         return UMP_OK;
     if (!e->dict)
-        return UMP_FAIL(p->err, UMP_ERR_PARSE,
+        return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                         "%s:%d: $%s; merges a dictionary, but %s is a primitive entry "
                         "(%s:%d)",
                         t->file, t->line, name, name, e->file, e->line);
@@ -1008,10 +1091,10 @@ static ump_status parse_entries(parser *p, foam_lexer *lx, foam_dict *d, int unt
     char tb[128];
     for (;;) {
         foam_token t;
-        UMP_CALL(lex_next(lx, &t));
-        if (lex_is_eof(&t)) {
+        UMP_CALL(foam_lex_next(lx, &t));
+        if (foam_lex_is_eof(&t)) {
             if (until_brace)
-                return UMP_FAIL(p->err, UMP_ERR_PARSE,
+                return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                                 "%s:%d: expected '}' closing dictionary '%s' opened at line %d, "
                                 "found end of file",
                                 lx->file, t.line, d->name, open_line);
@@ -1020,7 +1103,7 @@ static ump_status parse_entries(parser *p, foam_lexer *lx, foam_dict *d, int unt
         if (t.type == FOAM_TOK_PUNCT && t.v.punct == '}') {
             if (until_brace)
                 return UMP_OK;
-            return UMP_FAIL(p->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                             "%s:%d: expected a keyword, found '}' (no matching '{')", t.file,
                             t.line);
         }
@@ -1036,7 +1119,7 @@ static ump_status parse_entries(parser *p, foam_lexer *lx, foam_dict *d, int unt
         }
         if (t.type != FOAM_TOK_WORD && t.type != FOAM_TOK_STRING) {
             tokstr(&t, tb, sizeof tb);
-            return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected a keyword%s, found %s",
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected a keyword%s, found %s",
                             t.file, t.line, until_brace ? " or '}'" : "", tb);
         }
         foam_entry e;
@@ -1046,9 +1129,9 @@ static ump_status parse_entries(parser *p, foam_lexer *lx, foam_dict *d, int unt
         e.file = t.file;
         e.line = t.line;
         foam_token nt;
-        UMP_CALL(lex_peek(lx, &nt));
+        UMP_CALL(foam_lex_peek(lx, &nt));
         if (nt.type == FOAM_TOK_PUNCT && nt.v.punct == '{') {
-            (void)lex_next(lx, &nt);
+            (void)foam_lex_next(lx, &nt);
             UMP_CALL(parse_block(p, lx, d, e.key, nt.line, &e.dict));
         } else {
             size_t base = p->nstk;
@@ -1086,7 +1169,7 @@ static ump_status parse_arch(parser *p, const char *arch, const foam_entry *e)
         memcpy(item, s, n);
         item[n] = '\0';
         if (strcmp(item, "MSB") == 0)
-            return UMP_FAIL(p->err, UMP_ERR_UNSUPPORTED,
+            return FOAM_FAIL(p->err, UMP_ERR_UNSUPPORTED,
                             "%s:%d: big-endian (MSB) binary files are not supported", e->file,
                             e->line);
         if (strncmp(item, "label=", 6) == 0 || strncmp(item, "scalar=", 7) == 0) {
@@ -1094,7 +1177,7 @@ static ump_status parse_arch(parser *p, const char *arch, const foam_entry *e)
             const char *v = item + (is_label ? 6 : 7);
             int bits = strcmp(v, "32") == 0 ? 32 : strcmp(v, "64") == 0 ? 64 : 0;
             if (!bits)
-                return UMP_FAIL(p->err, UMP_ERR_UNSUPPORTED,
+                return FOAM_FAIL(p->err, UMP_ERR_UNSUPPORTED,
                                 "%s:%d: arch \"%s\": expected %s=32 or %s=64", e->file, e->line,
                                 arch, is_label ? "label" : "scalar", is_label ? "label" : "scalar");
             if (is_label)
@@ -1116,7 +1199,7 @@ static ump_status read_header(parser *p, foam_dict *h)
     long fi = find_exact(h, "format");
     if (fi >= 0) {
         if (!fmt || (strcmp(fmt, "ascii") != 0 && strcmp(fmt, "binary") != 0))
-            return UMP_FAIL(p->err, UMP_ERR_PARSE,
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE,
                             "%s:%d: FoamFile format: expected ascii or binary", h->e[fi].file,
                             h->e[fi].line);
         f->binary = strcmp(fmt, "binary") == 0;
@@ -1132,7 +1215,7 @@ static ump_status read_header(parser *p, foam_dict *h)
     if (ai >= 0 && f->binary) {
         const char *arch = entry_text(h, "arch");
         if (!arch)
-            return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: FoamFile arch: expected a string",
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: FoamFile arch: expected a string",
                             h->e[ai].file, h->e[ai].line);
         UMP_CALL(parse_arch(p, arch, &h->e[ai]));
     }
@@ -1177,11 +1260,11 @@ static int body_text_class(const char *cls, int *inner_labels)
 
 static ump_status expect_count(parser *p, foam_lexer *lx, foam_token *t, const char *what)
 {
-    UMP_CALL(lex_next(lx, t));
+    UMP_CALL(foam_lex_next(lx, t));
     if (t->type != FOAM_TOK_LABEL || t->v.label < 0) {
         char tb[128];
         tokstr(t, tb, sizeof tb);
-        return UMP_FAIL(p->err, lex_is_eof(t) ? UMP_ERR_IO : UMP_ERR_PARSE,
+        return FOAM_FAIL(p->err, foam_lex_is_eof(t) ? UMP_ERR_IO : UMP_ERR_PARSE,
                         "%s:%d: expected the size of %s, found %s", lx->file, t->line, what, tb);
     }
     return UMP_OK;
@@ -1196,7 +1279,7 @@ static ump_status parse_body(parser *p, foam_lexer *lx)
             for (int k = 0; k < nlists; k++) {
                 foam_token t, bt;
                 UMP_CALL(expect_count(p, lx, &t, "binary list"));
-                UMP_CALL(lex_blob(lx, t.v.label, ncomp, is_label, t.line, &bt));
+                UMP_CALL(foam_lex_blob(lx, t.v.label, ncomp, is_label, t.line, &bt));
                 UMP_CALL(push_tok(p, &bt));
             }
         } else if (body_text_class(f->class_name, &inner)) {
@@ -1205,32 +1288,32 @@ static ump_status parse_body(parser *p, foam_lexer *lx)
                 foam_token t, o;
                 UMP_CALL(expect_count(p, lx, &t, "list"));
                 UMP_CALL(push_tok(p, &t));
-                UMP_CALL(lex_next(lx, &o));
+                UMP_CALL(foam_lex_next(lx, &o));
                 if (!(o.type == FOAM_TOK_PUNCT && o.v.punct == '(')) {
                     char tb[128];
                     tokstr(&o, tb, sizeof tb);
-                    return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected '(', found %s",
+                    return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected '(', found %s",
                                     lx->file, o.line, tb);
                 }
                 UMP_CALL(push_tok(p, &o));
                 for (int64_t i = 0; i < t.v.label; i++) {
                     foam_token c, bt;
                     UMP_CALL(expect_count(p, lx, &c, "binary label list"));
-                    UMP_CALL(lex_blob(lx, c.v.label, 1, 1, c.line, &bt));
+                    UMP_CALL(foam_lex_blob(lx, c.v.label, 1, 1, c.line, &bt));
                     UMP_CALL(push_tok(p, &bt));
                 }
-                UMP_CALL(lex_next(lx, &o));
+                UMP_CALL(foam_lex_next(lx, &o));
                 if (!(o.type == FOAM_TOK_PUNCT && o.v.punct == ')')) {
                     char tb[128];
                     tokstr(&o, tb, sizeof tb);
-                    return UMP_FAIL(p->err, lex_is_eof(&o) ? UMP_ERR_IO : UMP_ERR_PARSE,
+                    return FOAM_FAIL(p->err, foam_lex_is_eof(&o) ? UMP_ERR_IO : UMP_ERR_PARSE,
                                     "%s:%d: expected ')' after %lld lists, found %s", lx->file,
                                     o.line, (long long)t.v.label, tb);
                 }
                 UMP_CALL(push_tok(p, &o));
             }
         } else {
-            return UMP_FAIL(p->err, UMP_ERR_UNSUPPORTED,
+            return FOAM_FAIL(p->err, UMP_ERR_UNSUPPORTED,
                             "%s: binary files of class '%s' are not supported", f->path,
                             f->class_name);
         }
@@ -1245,17 +1328,17 @@ static ump_status parse_file(parser *p, const char *buf, size_t len)
 {
     foam_file *f = p->f;
     foam_lexer lx;
-    lex_init(&lx, buf, len, f->path, p->a, p->err);
+    foam_lex_init(&lx, buf, len, f->path, p->a, p->err);
     foam_token t;
-    UMP_CALL(lex_peek(&lx, &t));
+    UMP_CALL(foam_lex_peek(&lx, &t));
     if (t.type == FOAM_TOK_WORD && strcmp(t.v.str, "FoamFile") == 0) {
-        (void)lex_next(&lx, &t);
+        (void)foam_lex_next(&lx, &t);
         foam_token o;
-        UMP_CALL(lex_next(&lx, &o));
+        UMP_CALL(foam_lex_next(&lx, &o));
         if (!(o.type == FOAM_TOK_PUNCT && o.v.punct == '{')) {
             char tb[128];
             tokstr(&o, tb, sizeof tb);
-            return UMP_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected '{' after FoamFile, found %s",
+            return FOAM_FAIL(p->err, UMP_ERR_PARSE, "%s:%d: expected '{' after FoamFile, found %s",
                             f->path, o.line, tb);
         }
         UMP_CALL(parse_block(p, &lx, NULL, "FoamFile", o.line, &f->header));
@@ -1263,14 +1346,14 @@ static ump_status parse_file(parser *p, const char *buf, size_t len)
         lx.binary = f->binary;
         lx.label_bytes = f->label_bytes;
         lx.scalar_bytes = f->scalar_bytes;
-        UMP_CALL(lex_peek(&lx, &t));
+        UMP_CALL(foam_lex_peek(&lx, &t));
     }
     if (t.type == FOAM_TOK_LABEL || (t.type == FOAM_TOK_PUNCT && t.v.punct == '(')) {
         UMP_CALL(parse_body(p, &lx));
         /* hand the scratch stack over as the body (no copy) */
         f->nbody = p->nstk;
         if (p->nstk == 0) {
-            f->body = arena_alloc(p->a, 1, sizeof *f->body);
+            f->body = foam_arena_alloc(p->a, 1, sizeof *f->body);
             if (!f->body)
                 return oom(p, f->path, 0);
         } else {
@@ -1280,7 +1363,7 @@ static ump_status parse_file(parser *p, const char *buf, size_t len)
             f->body = p->stk;
             p->stk = NULL;
             p->nstk = p->capstk = 0;
-            if (!arena_adopt(p->a, f->body, free_ptr)) {
+            if (!foam_arena_adopt(p->a, f->body, free_ptr)) {
                 f->body = NULL;
                 f->nbody = 0;
                 return oom(p, f->path, 0);
@@ -1298,22 +1381,22 @@ ump_status foam_file_parse_ex(const char *name, const char *buf, size_t len, uns
     if (!name)
         name = "(buffer)";
     if (!buf && len)
-        return UMP_FAIL(err, UMP_ERR_INPUT, "%s: no data", name);
+        return FOAM_FAIL(err, UMP_ERR_INPUT, "%s: no data", name);
     foam_file *f = ump_alloc_array(1, sizeof *f);
-    foam_arena *a = f ? arena_new() : NULL;
+    foam_arena *a = f ? foam_arena_new() : NULL;
     if (!a) {
         free(f);
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", name);
+        return FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", name);
     }
     f->arena = a;
     f->label_bytes = 4;
     f->scalar_bytes = 8;
-    f->path = arena_strndup(a, name, strlen(name));
-    f->class_name = arena_strndup(a, "", 0);
+    f->path = foam_arena_strndup(a, name, strlen(name));
+    f->class_name = foam_arena_strndup(a, "", 0);
     f->object = f->class_name;
     if (!f->path || !f->class_name) {
         foam_file_free(&f);
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", name);
+        return FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", name);
     }
     parser p;
     memset(&p, 0, sizeof p);
@@ -1325,7 +1408,7 @@ ump_status foam_file_parse_ex(const char *name, const char *buf, size_t len, uns
     p.budget += len > SIZE_MAX / 32 ? SIZE_MAX / 4 : len * 16;
     f->dict = new_dict(&p, NULL, "", f->path, 1);
     ump_status rc = f->dict ? parse_file(&p, buf ? buf : "", len)
-                            : UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", name);
+                            : FOAM_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", name);
     free(p.stk);
     if (rc != UMP_OK) {
         foam_file_free(&f);
@@ -1345,13 +1428,13 @@ ump_status foam_file_read(const char *path, foam_file **out, ump_err *err)
 {
     *out = NULL;
     if (!path)
-        return UMP_FAIL(err, UMP_ERR_IO, "cannot open (null path)");
-    char *real = resolve_gz(path);
+        return FOAM_FAIL(err, UMP_ERR_IO, "cannot open (null path)");
+    char *real = foam_resolve_gz(path);
     if (!real)
-        return UMP_FAIL(err, UMP_ERR_IO, "cannot open %s (nor %s.gz)", path, path);
+        return FOAM_FAIL(err, UMP_ERR_IO, "cannot open %s (nor %s.gz)", path, path);
     char *buf;
     size_t len;
-    ump_status rc = read_whole_file(real, &buf, &len, err);
+    ump_status rc = foam_read_whole_file(real, &buf, &len, err);
     if (rc == UMP_OK) {
         rc = foam_file_parse_ex(real, buf, len, 0, out, err);
         free(buf);
@@ -1364,26 +1447,110 @@ void foam_file_free(foam_file **fp)
 {
     if (!fp || !*fp)
         return;
-    arena_free((*fp)->arena);
+    foam_arena_free((*fp)->arena);
     free(*fp);
     *fp = NULL;
 }
 
-int pattern_match(const char *pattern, const char *key)
+/* glibc's regcomp copies the tree of an atom for every '+' and interval
+ * applied to it, so "a++++..." or (a{100}){100} build exponentially large
+ * automata. Estimate that size (atoms, doubled by '+', times n+1 by {m,n})
+ * and refuse costly patterns, and back-references (backtracking), treating
+ * them as matching nothing: real OpenFOAM keys never need them. */
+static int pattern_too_costly(const char *pat, size_t n)
+{
+    enum { MAXDEPTH = 32 };
+    const double limit = 4096;
+    double outer[MAXDEPTH], cur = 0, last = 0;
+    int sp = 0;
+    if (n > 1024)
+        return 1;
+    for (size_t i = 0; i < n; i++) {
+        char c = pat[i];
+        if (c == '\\') {
+            if (i + 1 < n && pat[i + 1] >= '1' && pat[i + 1] <= '9')
+                return 1;
+            i++;
+            last = 1;
+            cur += 1;
+        } else if (c == '[') {
+            size_t j = i + 1;
+            if (j < n && pat[j] == '^')
+                j++;
+            if (j < n && pat[j] == ']')
+                j++;
+            while (j < n && pat[j] != ']')
+                j++;
+            i = j;
+            last = 1;
+            cur += 1;
+        } else if (c == '(') {
+            if (sp == MAXDEPTH)
+                return 1;
+            outer[sp++] = cur;
+            cur = 0;
+            last = 0;
+        } else if (c == ')' && sp > 0) {
+            last = cur;
+            cur = outer[--sp] + last;
+        } else if (c == '|') {
+            last = 0;
+        } else if (c == '+') {
+            cur += last;
+            last *= 2;
+        } else if (c == '{') {
+            long hi = 0;
+            size_t j = i + 1;
+            while (j < n && pat[j] != '}') {
+                long v = 0;
+                while (j < n && pat[j] >= '0' && pat[j] <= '9' && v < 100000)
+                    v = v * 10 + (pat[j++] - '0');
+                if (v > hi)
+                    hi = v;
+                if (j < n && pat[j] != '}' && !(pat[j] >= '0' && pat[j] <= '9'))
+                    j++;
+            }
+            i = j;
+            cur += last * (double)hi;
+            last *= (double)(hi + 1);
+        } else if (c == '*' || c == '?') {
+            /* no copy */
+        } else {
+            last = 1;
+            cur += 1;
+        }
+        double total = cur;
+        for (int k = 0; k < sp; k++)
+            total += outer[k];
+        if (total > limit || last > limit)
+            return 1;
+    }
+    return 0;
+}
+
+/* Compile a key pattern for whole-string matching, as OpenFOAM's
+ * regExp::match; 0 when it cannot be used (then it matches nothing). */
+static int pattern_compile(const char *pattern, regex_t *rx)
 {
     size_t n = strlen(pattern);
+    if (pattern_too_costly(pattern, n))
+        return 0;
     char *re = ump_alloc_array(n + 5, 1);
     if (!re)
         return 0;
-    /* whole-string match, as OpenFOAM's regExp::match */
     re[0] = '^';
     re[1] = '(';
     memcpy(re + 2, pattern, n);
     memcpy(re + 2 + n, ")$", 3);
-    regex_t rx;
-    int ok = regcomp(&rx, re, REG_EXTENDED | REG_NOSUB) == 0;
+    int ok = regcomp(rx, re, REG_EXTENDED | REG_NOSUB) == 0;
     free(re);
-    if (!ok)
+    return ok;
+}
+
+int foam_pattern_match(const char *pattern, const char *key)
+{
+    regex_t rx;
+    if (!pattern_compile(pattern, &rx))
         return 0;
     int m = regexec(&rx, key, 0, NULL, 0) == 0;
     regfree(&rx);

@@ -11,16 +11,31 @@
  * punctuation ; ( ) { } [ ] : , = + * / (a '-' starts a number when a digit
  * or '.' follows), "quoted strings" (a quoted key is a regular expression),
  * words (anything else; balanced parentheses inside a word are kept, so
- * div(phi,U) is one word), numbers (digits only: label; otherwise scalar
- * when strtod consumes the whole token; otherwise word).
+ * div(phi,U) is one word; a ']' outside parentheses ends a word, so that
+ * [kg/m^3] gives '[' kg '/' m^3 ']'), numbers (the run of [0-9.eE+-]:
+ * digits only: label (scalar if it overflows int64); otherwise scalar when
+ * strtod consumes the whole run; otherwise word), #{ verbatim #} (a string).
+ * As in v1912 only ( ) and { } must balance inside an entry.
+ *
+ * Dictionaries: a redefined key replaces the entry in place, except that a
+ * dictionary given again for a dictionary is merged into it (v1912's
+ * default "merge" input mode). A FoamFile entry in an included file is
+ * dropped. Inside a value, "name { ... }" becomes FOAM_TOK_DICT, except
+ * after a count, where "N{v}" stays tokens (uniform list).
  *
  * Directives and macros are resolved WHILE parsing, in file order, as
  * OpenFOAM does:
  *   $var ${var}      value of var, searched in this dict then its parents
- *   $..var           one scope up per extra '.'
+ *                    (then the environment); undefined is an error
+ *   $..var           one scope up per extra '.' (no search of parents there)
  *   $:a.b            absolute scope: top-level a, then b inside it
  *   $a.b / $a/b      scoped: sub-dictionary a of the current scope, then b
- *   "$var;" as an entry inside a dictionary merges var's entries (var a dict)
+ *   ${..$x..}        $x inside braces is substituted first
+ *   Value look-ups are literal (pattern keys never match), as in v1912. In a
+ *   value, $d naming a dictionary gives one FOAM_TOK_DICT token (a copy).
+ *   "$var;" as an entry inside a dictionary merges var's entries (var a dict;
+ *                    this look-up also matches pattern keys, as v1912 does,
+ *                    and an undefined var is ignored, as v1912 does)
  *   #include "f"     relative to the including file's directory; $FOAM_CASE,
  *                    <case>, <system>, <constant> and $ENV are expanded
  *   #includeIfPresent "f"  as #include, silently skipped when absent
@@ -30,17 +45,28 @@
  *   #remove key|(k1 k2)  removes entries; #inputMode ... is ignored
  *   #calc #codeStream #eval #if ... : refused (UMP_ERR_UNSUPPORTED) naming
  *                    file and line.
+ * Included files may be gzipped; includes nest at most 32 deep, and macro
+ * copies are bounded (about 16 tokens per input byte) so that exponential
+ * $var use fails with UMP_ERR_INPUT instead of exhausting memory.
  *
  * Binary files ("format binary;"): the "arch" entry ("LSB;label=32;scalar=64")
  * gives label and scalar sizes (32 or 64 bits each; MSB refused). Contiguous
  * lists are "N\n(" + raw bytes + ")". They are recognised in two places:
  *   - in a dictionary entry, a count directly after a word List<T>, T one of
- *     label scalar vector sphericalTensor symmTensor tensor;
+ *     label scalar vector sphericalTensor symmTensor tensor (and the 2D
+ *     vector2D symmTensor2D tensor2D sphericalTensor2D);
  *   - in a file body, by the header class: labelList, scalarField/List,
  *     vectorField/List, faceCompactList (two label lists), labelField,
- *     scalarField, vectorField. A binary body of another class is refused.
+ *     scalarField, vectorField, sphericalTensorField, symmTensorField,
+ *     tensorField; faceList, labelListList, cellList ("N(" then one binary
+ *     label list per item, then ")"). Bodies that are text even in binary
+ *     files are tokenized normally: polyBoundaryMesh, cellZoneMesh,
+ *     faceZoneMesh, pointZoneMesh, regIOobject, dictionary. A binary body of
+ *     another class (e.g. Cloud<...> positions) is refused
+ *     (UMP_ERR_UNSUPPORTED).
  * Raw data is converted to native int64/double and kept as a FOAM_TOK_BLOB
- * token. Anything cut short is an error naming the file.
+ * token (line = line of the count). "0" alone, "0()" and "0 ( )" give an
+ * empty blob. Anything cut short is an error naming the file.
  *
  * Memory: a foam_file owns everything reachable from it; foam_file_free()
  * releases it all. Strings and tokens are borrowed from it.
@@ -149,8 +175,10 @@ const foam_dict *foam_dict_sub(const foam_dict *d, const char *key);
  * is NOT used: writes into buf, returns buf). */
 const char *foam_dict_path(const foam_dict *d, char *buf, size_t len);
 
-/* Typed getters. Each fails (UMP_ERR_INPUT / UMP_ERR_PARSE) with a message
- * "<file>:<line>: ..." when the key is missing or of the wrong form; the
+/* Typed getters: non-recursive look-up (pattern keys match); the value must
+ * be exactly the expected tokens. Each fails (UMP_ERR_INPUT / UMP_ERR_PARSE)
+ * with a message "<file>:<line>: ..." when the key is missing or of the
+ * wrong form; the
  *  *_or variants return the default when the key is absent but still fail on
  *  a malformed value. */
 ump_status foam_get_scalar(const foam_dict *d, const char *key, double *out, ump_err *err);
@@ -165,7 +193,10 @@ ump_status foam_get_bool_or(const foam_dict *d, const char *key, int dflt, int *
 /* (x y z) */
 ump_status foam_get_vector(const foam_dict *d, const char *key, double out[3], ump_err *err);
 /* Dimensioned scalar, any of:  key 0.01;  key [0 2 -1 0 0 0 0] 0.01;
- * key key [0 2 -1 0 0 0 0] 0.01;  dims (7 entries) may be NULL. */
+ * key key [0 2 -1 0 0 0 0] 0.01;  key name 0.01;  dims (7 entries) may be
+ * NULL. Dimensions are 7 (or 5) numbers or SI unit names with factor 1
+ * (kg m s K mol A cd N Pa J W Hz C V, "^n" powers, '/' divides; [m^2/s]
+ * [W/m/K] [1/K]); dims absent -> all 0. */
 ump_status foam_get_dimensioned(const foam_dict *d, const char *key, double *value,
                                 double dims[7], ump_err *err);
 
@@ -174,21 +205,31 @@ ump_status foam_get_dimensioned(const foam_dict *d, const char *key, double *val
  * what they consumed and report malformed input as "<file>:<line>: ...".
  * 'what' names the thing being read in messages (e.g. "points"). */
 
-/* One scalar (label or scalar token). */
+/* One scalar (label or scalar token, or nan/inf). */
 ump_status foam_tok_scalar(const foam_token *tok, size_t nt, size_t *pos,
                            double *out, const char *what, ump_err *err);
 /* A list of n elements of ncomp scalars each, any OpenFOAM form:
  *   N ( a b c )     N ( (x y z) (x y z) )    N { v }    N { (x y z) }
  *   ( a b c )       blob (binary)            0 ( )   0()
- * ncomp == 1: elements are plain numbers; ncomp > 1: "(c1 .. cn)".
- * *out is allocated (caller frees with free()), *n its element count. */
+ * and a lone "0" (binary writers emit "nonuniform 0;").
+ * ncomp == 1: elements are plain numbers; ncomp > 1: "(c1 .. cn)". Numbers
+ * are labels, scalars, or words nan/inf (also "-" inf). A blob must have
+ * ncomp components (a label blob is converted). Sizes are limited to
+ * UMP_IDX_MAX elements; N is checked against the tokens present before
+ * anything is allocated, and the item count must equal N. A token array
+ * with no tokens has no file name to report.
+ * *out is allocated (caller frees with free()), *n its element count;
+ * on failure *out is NULL and *pos unchanged (the same for all decoders). */
 ump_status foam_tok_scalar_list(const foam_token *tok, size_t nt, size_t *pos,
                                 int ncomp, double **out, size_t *n,
                                 const char *what, ump_err *err);
-/* A list of labels (same forms); values checked to fit ump_idx. */
+/* A list of labels (same forms, label tokens only); values checked to fit
+ * ump_idx (INT32_MIN..UMP_IDX_MAX: negative labels are allowed). */
 ump_status foam_tok_label_list(const foam_token *tok, size_t nt, size_t *pos,
                                ump_idx **out, size_t *n, const char *what, ump_err *err);
-/* A list of label lists, e.g. faces "N( 4(a b c d) 3(e f g) ... )", into CSR:
+/* A list of label lists, e.g. faces "N( 4(a b c d) 3(e f g) ... )", or the
+ * compact form (faceCompactList: a list of n+1 offsets starting at 0, then
+ * the items; two blobs in binary, two label lists in ASCII), into CSR:
  * *offs has *n+1 entries, *items offs[n] entries (both caller-freed). */
 ump_status foam_tok_labellist_list(const foam_token *tok, size_t nt, size_t *pos,
                                    ump_idx **offs, ump_idx **items, size_t *n,
