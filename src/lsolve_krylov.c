@@ -39,6 +39,8 @@ struct lsolve_krylov {
     ump_idx *iw;                              /* [n] ILU: column marker, -1 */
     double *lu;                               /* [cap] ILU(0) factor values */
     size_t cap;
+    ump_idx pc_n;                             /* order the preconditioner was built for, -1 none */
+    int pc_kind;                              /* its lsolve_pc */
 };
 
 void lsolve_krylov_free(lsolve_krylov **pk)
@@ -62,6 +64,7 @@ ump_status lsolve_krylov_create(ump_idx n, lsolve_krylov **out, ump_err *err)
     lsolve_krylov *k = ump_alloc_array(1, sizeof *k);
     UMP_CHECK(k, err, UMP_ERR_NOMEM, "BiCGSTAB: out of memory");
     k->n = n;
+    k->pc_n = -1;
     ALLOC(k->r, n);
     ALLOC(k->rh, n);
     ALLOC(k->p, n);
@@ -184,8 +187,27 @@ static void apply_pc(const lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, 
     }
 }
 
+static ump_status bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, int setup,
+                           const double *b, double *x, double tol, int maxit, lsolve_stats *st,
+                           ump_err *err);
+
 ump_status lsolve_bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, const double *b,
                            double *x, double tol, int maxit, lsolve_stats *st, ump_err *err)
+{
+    return bicgstab(k, A, pc, 1, b, x, tol, maxit, st, err);
+}
+
+ump_status lsolve_bicgstab_again(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, const double *b,
+                                 double *x, double tol, int maxit, lsolve_stats *st, ump_err *err)
+{
+    UMP_CHECK(k->pc_n == A->n && k->pc_kind == (int)pc, err, UMP_ERR_INPUT,
+              "BiCGSTAB: no preconditioner of this kind was built for a matrix of order %d", (int)A->n);
+    return bicgstab(k, A, pc, 0, b, x, tol, maxit, st, err);
+}
+
+static ump_status bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, int setup,
+                           const double *b, double *x, double tol, int maxit, lsolve_stats *st,
+                           ump_err *err)
 {
     /* the workspace may be larger than A: the particle count varies per step */
     const ump_idx n = A->n;
@@ -194,10 +216,15 @@ ump_status lsolve_bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, 
               (int)A->n, (int)k->n);
     UMP_CHECK(tol > 0 && maxit >= 0, err, UMP_ERR_INPUT, "BiCGSTAB: tolerance %g, %d iterations",
               tol, maxit);
-    if (pc == LSOLVE_PC_JACOBI)
-        UMP_CALL(setup_jacobi(k, A, err));
-    else if (pc == LSOLVE_PC_ILU0)
-        UMP_CALL(setup_ilu0(k, A, err));
+    if (setup) {
+        k->pc_n = -1;
+        if (pc == LSOLVE_PC_JACOBI)
+            UMP_CALL(setup_jacobi(k, A, err));
+        else if (pc == LSOLVE_PC_ILU0)
+            UMP_CALL(setup_ilu0(k, A, err));
+        k->pc_n = A->n; /* remembered for lsolve_bicgstab_again */
+        k->pc_kind = (int)pc;
+    }
 
     double *r = k->r, *rh = k->rh, *p = k->p, *v = k->v, *ph = k->ph, *s = k->s, *sh = k->sh,
            *t = k->t;

@@ -434,7 +434,7 @@ static ump_status predictor(sol *S, double dt, sol_stats *st, ump_err *err)
     memcpy(S->vs, P->v, n * sizeof *S->vs);
     UMP_CALL(lsolve_bicgstab(S->kry, S->A, S->set.pred_pc, S->rhs_u, S->us, S->set.pred_tol,
                              S->set.pred_maxit, &st->pred[0], err));
-    UMP_CALL(lsolve_bicgstab(S->kry, S->A, S->set.pred_pc, S->rhs_v, S->vs, S->set.pred_tol,
+    UMP_CALL(lsolve_bicgstab_again(S->kry, S->A, S->set.pred_pc, S->rhs_v, S->vs, S->set.pred_tol,
                              S->set.pred_maxit, &st->pred[1], err));
     if (st->pred[0].converged < 0 || st->pred[1].converged < 0)
         return UMP_FAIL(err, UMP_ERR_SINGULAR, "predictor: BiCGSTAB broke down (residual %g)",

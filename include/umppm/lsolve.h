@@ -107,4 +107,10 @@ void lsolve_krylov_free(lsolve_krylov **k);
 ump_status lsolve_bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, const double *b,
                            double *x, double tol, int maxit, lsolve_stats *st, ump_err *err);
 
+/* As lsolve_bicgstab for the same matrix values as the previous call (a
+ * second right-hand side, e.g. v after u): the preconditioner built then is
+ * reused instead of being recomputed. */
+ump_status lsolve_bicgstab_again(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, const double *b,
+                                 double *x, double tol, int maxit, lsolve_stats *st, ump_err *err);
+
 #endif
