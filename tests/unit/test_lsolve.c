@@ -545,6 +545,26 @@ static void test_ilu0_exact(void **state)
     assert_int_equal(lsolve_bicgstab(k, A, LSOLVE_PC_ILU0, b, x, 1e-13, 10, &st, &err), UMP_OK);
     assert_int_equal(st.converged, 1);
     TU_CLOSE(x[3], 0, 0);
+    /* a second right-hand side reuses the ILU(0) factors: same solution as a fresh solve */
+    {
+        double *b2 = calloc((size_t)n, sizeof *b2), *x2 = calloc((size_t)n, sizeof *x2), *x3 = calloc((size_t)n, sizeof *x3);
+        for (int i = 0; i < n; i++)
+            b2[i] = cos(0.3 * (double)i);
+        lsolve_krylov *k3 = NULL;
+        assert_int_equal(lsolve_krylov_create(n, &k3, &err), UMP_OK);
+        assert_int_equal(lsolve_bicgstab_again(k3, A, LSOLVE_PC_ILU0, b2, x2, 1e-13, 10, &st, &err),
+                         UMP_ERR_INPUT); /* nothing built yet */
+        assert_int_equal(lsolve_bicgstab(k3, A, LSOLVE_PC_ILU0, b, x, 1e-13, 10, &st, &err), UMP_OK);
+        assert_int_equal(lsolve_bicgstab_again(k3, A, LSOLVE_PC_ILU0, b2, x2, 1e-13, 10, &st, &err), UMP_OK);
+        assert_int_equal(st.converged, 1);
+        assert_int_equal(lsolve_bicgstab(k3, A, LSOLVE_PC_ILU0, b2, x3, 1e-13, 10, &st, &err), UMP_OK);
+        for (int i = 0; i < n; i++)
+            TU_CLOSE(x2[i], x3[i], 1e-11);
+        lsolve_krylov_free(&k3);
+        free(b2);
+        free(x2);
+        free(x3);
+    }
     /* a larger workspace serves a smaller matrix (the particle count varies);
      * a smaller one is refused */
     lsolve_krylov *k2 = NULL;
