@@ -61,10 +61,10 @@ unit: $(UNIT_BIN) $(APP)
 	@set -e; for t in $(UNIT_BIN); do echo "== $$t"; $$t; done
 
 # Tests against OpenFOAM's own tools (blockMesh, gmshToFoam, postProcess...).
-integration: $(APP) $(BUILD)/geomcheck $(BUILD)/write_cavity_fields $(BUILD)/write_cloud
+integration: $(APP) $(TOOLS) $(BUILD)/geomcheck $(BUILD)/write_cavity_fields $(BUILD)/write_cloud
 	@UMPPMFOAM=$(abspath $(APP)) GEOMCHECK=$(abspath $(BUILD)/geomcheck) \
 	    WRITE_CAVITY_FIELDS=$(abspath $(BUILD)/write_cavity_fields) \
-	    WRITE_CLOUD=$(abspath $(BUILD)/write_cloud) tests/integration/run_all.sh
+	    WRITE_CLOUD=$(abspath $(BUILD)/write_cloud) TOOLDIR=$(abspath $(BUILD)/tools) tests/integration/run_all.sh
 
 $(BUILD)/%: tests/integration/%.c $(LIB)
 	$(CC) $(CPPFLAGS) $(CFLAGS_ALL) -o $@ $< $(LIB) $(LDLIBS)

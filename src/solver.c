@@ -323,6 +323,22 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
         maxn2 = UMP_MAX(maxn2, m->n2_off[c + 1] - m->n2_off[c]);
     if ((rc = ensure_scratch(S, (size_t)maxn2 + 64, err)) != UMP_OK)
         goto fail;
+    /* face fluxes of the initial cell velocities (linear interpolation), as
+     * icoFoam's createPhi: the first Courant number and inletOutlet need them */
+    for (ump_idx f = 0; f < m->nfaces; f++) {
+        ump_idx o = m->owner[f];
+        double u = S->uc[o], v = S->vc[o];
+        if (f < m->ninternal) {
+            u = 0.5 * (u + S->uc[m->neigh[f]]);
+            v = 0.5 * (v + S->vc[m->neigh[f]]);
+        } else if (S->u_kind[f - m->ninternal] == BU_FIXED) {
+            u = S->ub[f - m->ninternal];
+            v = S->vb[f - m->ninternal];
+        } else if (S->u_kind[f - m->ninternal] == BU_SYMMETRY) {
+            u = v = 0;
+        }
+        S->flux[f] = (u * m->nx[f] + v * m->ny[f]) * m->len[f];
+    }
     set_boundary_particles(S);
     *out = S;
     return UMP_OK;

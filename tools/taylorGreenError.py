@@ -1,0 +1,21 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+# taylorGreenError.py CASE TIME [nu]: Taylor-Green errors of a run whose 0/U is the
+# exact field at the centroids (setTaylorGreen), so the exact field at time t
+# is U0*exp(b t), b = -8 pi^2 nu (U = L = 1).
+import math, re, sys
+case, tname = sys.argv[1], sys.argv[2]
+nu = float(sys.argv[3]) if len(sys.argv) > 3 else 0.01
+def read(path):
+    t = open(path).read()
+    m = re.search(r'internalField\s+nonuniform List<vector>\s*\n?(\d+)\s*\(', t)
+    n = int(m.group(1))
+    v = [tuple(map(float, x.group(1).split())) for x in re.finditer(r'\(([^()]*)\)', t[m.end():])]
+    return v[:n]
+U0, U = read(f'{case}/0/U'), read(f'{case}/{tname}/U')
+g = math.exp(-8 * math.pi ** 2 * nu * float(tname))
+num = sum((u[0] - g * a[0]) ** 2 + (u[1] - g * a[1]) ** 2 for u, a in zip(U, U0))
+den = sum((g * a[0]) ** 2 + (g * a[1]) ** 2 for a in U0)
+m0 = max(math.hypot(a[0], a[1]) for a in U0)
+m1 = max(math.hypot(u[0], u[1]) for u in U)
+print(f"L2rel {math.sqrt(num/den):.6g} Linf_decay {abs(m1/m0 - g)/g:.6g}")
