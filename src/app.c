@@ -168,11 +168,9 @@ static ump_status write_time(app *a, const rt_time *t, ump_err *err)
         a->written = w;
         w[a->nwritten++] = ump_strdup(t->name);
         while (a->nwritten > a->ctl.purge_write) {
-            fio_timedir old;
-            memset(&old, 0, sizeof old);
-            snprintf(old.tmp_dir, sizeof old.tmp_dir, "%.2000s/%.1000s", a->case_dir, w[0]);
-            old.open = 1;
-            fio_timedir_abort(&old); /* removes the directory tree */
+            char old[4200];
+            snprintf(old, sizeof old, "%s/%s", a->case_dir, w[0]);
+            UMP_CALL(fio_remove_dir(old, err));
             free(w[0]);
             memmove(w, w + 1, (size_t)(a->nwritten - 1) * sizeof *w);
             a->nwritten--;
@@ -197,7 +195,8 @@ static ump_status restart_cloud(app *a, const char *tname, ump_err *err)
     size_t n = 0, dropped = 0;
     double *pos = NULL, *vel = NULL, *xy = NULL;
     int64_t *id = NULL;
-    UMP_CALL(fio_read_cloud(dir, a->um.cloud_name, &n, &pos, &vel, &id, err));
+    ump_idx *cell = NULL;
+    UMP_CALL(fio_read_cloud(dir, a->um.cloud_name, &n, &pos, &vel, &id, &cell, err));
     ump_status rc = UMP_OK;
     xy = ump_alloc_array(4 * n, sizeof *xy);
     if (!xy) {
@@ -210,7 +209,7 @@ static ump_status restart_cloud(app *a, const char *tname, ump_err *err)
             xy[2 * n + i] = vel[3 * i + (size_t)ax[0]];
             xy[3 * n + i] = vel[3 * i + (size_t)ax[1]];
         }
-        rc = sol_set_particles(a->S, n, xy, xy + n, xy + 2 * n, xy + 3 * n, id, &dropped, err);
+        rc = sol_set_particles(a->S, n, xy, xy + n, xy + 2 * n, xy + 3 * n, id, cell, &dropped, err);
         if (rc == UMP_OK)
             printf("Restart: %zu particles read from %s/lagrangian/%s (%zu outside the mesh dropped)\n\n",
                    n - dropped, tname, a->um.cloud_name, dropped);
@@ -219,6 +218,7 @@ static ump_status restart_cloud(app *a, const char *tname, ump_err *err)
     free(pos);
     free(vel);
     free(id);
+    free(cell);
     return rc;
 }
 

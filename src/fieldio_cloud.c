@@ -101,7 +101,8 @@ static int is_punct(const foam_token *t, char c)
 
 /* ascii "N ( (x y z) celli ... )"; binary positions are refused here with a
  * clear message (umppmFoam writes ascii clouds). */
-static ump_status parse_positions(const foam_file *f, size_t *n, double **pos, ump_err *err)
+static ump_status parse_positions(const foam_file *f, size_t *n, double **pos, ump_idx **cell,
+                                  ump_err *err)
 {
     const foam_token *t = f->body;
     size_t nt = f->nbody, i = 0;
@@ -117,13 +118,18 @@ static ump_status parse_positions(const foam_file *f, size_t *n, double **pos, u
         return UMP_FAIL(err, UMP_ERR_PARSE, "%s: positions list declares %zu particles, file too short",
                         f->path, cnt);
     double *p = ump_alloc_array(3 * cnt, sizeof *p);
-    if (!p)
+    ump_idx *cl = ump_alloc_array(cnt, sizeof *cl);
+    if (!p || !cl) {
+        free(p);
+        free(cl);
         return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", f->path);
+    }
     i = 2;
     for (size_t k = 0; k < cnt; k++) {
         if (i + 6 > nt || !is_punct(&t[i], '(') || !is_punct(&t[i + 4], ')') ||
             t[i + 5].type != FOAM_TOK_LABEL) {
             free(p);
+            free(cl);
             return UMP_FAIL(err, UMP_ERR_PARSE, "%s: particle %zu: expected '(x y z) celli'",
                             foam_tok_where(t, nt, i < nt ? i : nt, f->path, w, sizeof w), k);
         }
@@ -135,33 +141,39 @@ static ump_status parse_positions(const foam_file *f, size_t *n, double **pos, u
                 p[3 * k + (size_t)c] = (double)q->v.label;
             else {
                 free(p);
+                free(cl);
                 return UMP_FAIL(err, UMP_ERR_PARSE, "%s: particle %zu: expected a coordinate",
                                 foam_tok_where(t, nt, i + 1 + (size_t)c, f->path, w, sizeof w), k);
             }
         }
+        int64_t ci = t[i + 5].v.label;
+        cl[k] = ci >= 0 && ci <= UMP_IDX_MAX ? (ump_idx)ci : -1;
         i += 6;
     }
     if (i >= nt || !is_punct(&t[i], ')') || i + 1 != nt) {
         free(p);
+        free(cl);
         return UMP_FAIL(err, UMP_ERR_PARSE, "%s: expected ')' closing the positions list",
                         foam_tok_where(t, nt, i < nt ? i : nt, f->path, w, sizeof w));
     }
     *n = cnt;
     *pos = p;
+    *cell = cl;
     return UMP_OK;
 }
 
 ump_status fio_read_cloud(const char *dir, const char *cloud, size_t *n, double **pos, double **vel,
-                          int64_t **id, ump_err *err)
+                          int64_t **id, ump_idx **cell, ump_err *err)
 {
     char path[4400];
     foam_file *f = NULL;
     *pos = *vel = NULL;
     *id = NULL;
+    *cell = NULL;
     *n = 0;
     snprintf(path, sizeof path, "%s/lagrangian/%s/positions", dir, cloud);
     UMP_CALL(foam_file_read(path, &f, err));
-    ump_status rc = parse_positions(f, n, pos, err);
+    ump_status rc = parse_positions(f, n, pos, cell, err);
     foam_file_free(&f);
     if (rc != UMP_OK)
         return rc;
@@ -205,8 +217,10 @@ fail:
     free(*pos);
     free(*vel);
     free(*id);
+    free(*cell);
     *pos = *vel = NULL;
     *id = NULL;
+    *cell = NULL;
     *n = 0;
     return rc;
 }

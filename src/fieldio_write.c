@@ -313,6 +313,13 @@ static int rm_tree(const char *path)
     return rc;
 }
 
+ump_status fio_remove_dir(const char *path, ump_err *err)
+{
+    if (rm_tree(path) != 0)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot remove (%s)", path, strerror(errno));
+    return UMP_OK;
+}
+
 static int path_exists(const char *path)
 {
     struct stat st;

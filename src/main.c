@@ -85,21 +85,6 @@ static int fatal(const ump_err *err)
     return 1;
 }
 
-static const char *kind_name(pmesh_patch_kind k)
-{
-    switch (k) {
-    case PMESH_PATCH: return "patch";
-    case PMESH_WALL: return "wall";
-    case PMESH_EMPTY: return "empty";
-    case PMESH_SYMMETRYPLANE: return "symmetryPlane";
-    case PMESH_SYMMETRY: return "symmetry";
-    case PMESH_CYCLIC: return "cyclic";
-    case PMESH_WEDGE: return "wedge";
-    case PMESH_OTHER: break;
-    }
-    return "other";
-}
-
 static void print_mesh(const pmesh *pm, const mesh2d *m)
 {
     mesh_stats s;
@@ -131,7 +116,6 @@ static void print_mesh(const pmesh *pm, const mesh2d *m)
         if (pp->kind == PMESH_CYCLIC)
             printf("  (neighbourPatch %s)", pp->neighbour_patch);
         printf("\n");
-        (void)kind_name;
     }
     printf("\nGeometry\n");
     printf("    cell area:        min %.6g  max %.6g  mean %.6g  total %.6g\n",
@@ -185,10 +169,8 @@ static ump_status make_geometry_fields(const pmesh *pm, const mesh2d *m, fld_fie
             double *cv = (*C)->patch[p].value + 3 * (size_t)i;
             if (t == FLD_BC_CYCLIC) {
                 /* as OpenFOAM: the face centre of this side */
-                ump_idx own = pm->owner[pp->start + i];
                 double sx = m->face_pm[f] == pp->start + i ? 0 : m->sepx[f];
                 double sy = m->face_pm[f] == pp->start + i ? 0 : m->sepy[f];
-                (void)own;
                 mesh_to3d(m, m->fx[f] + sx, m->fy[f] + sy, cv);
             } else {
                 mesh_to3d(m, m->fx[f], m->fy[f], cv);

@@ -350,7 +350,8 @@ fail:
 }
 
 ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y, const double *u,
-                             const double *v, const int64_t *id, size_t *dropped, ump_err *err)
+                             const double *v, const int64_t *id, const ump_idx *hint, size_t *dropped,
+                             ump_err *err)
 {
     part_set *P = S->P;
     P->n = 0;
@@ -360,7 +361,8 @@ ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y,
     for (size_t i = 0; i < n; i++) {
         double px = x[i], py = y[i];
         ump_idx cell, face;
-        if (part_locate(S->m, 0, &px, &py, &cell, &face) != PART_INSIDE) {
+        ump_idx start = hint && hint[i] >= 0 && hint[i] < S->m->ncells ? hint[i] : 0;
+        if (part_locate(S->m, start, &px, &py, &cell, &face) != PART_INSIDE) {
             (*dropped)++;
             continue;
         }

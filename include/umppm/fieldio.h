@@ -77,6 +77,9 @@ ump_status fio_timedir_commit(fio_timedir *td, ump_err *err);
 /* Remove the temporary directory (after a failure). Safe to call twice. */
 void fio_timedir_abort(fio_timedir *td);
 
+/* Remove a directory tree (purgeWrite of old time directories). */
+ump_status fio_remove_dir(const char *path, ump_err *err);
+
 /* Create directories along path (mkdir -p). */
 ump_status fio_mkdir_p(const char *path, ump_err *err);
 
@@ -101,8 +104,9 @@ ump_status fio_write_cloud(const char *dir, const char *location, const char *cl
                            const int64_t *id, int precision, ump_err *err);
 /* Read a cloud written by fio_write_cloud (or by OpenFOAM as ascii or
  * binary positions + U): *n particles, *pos, *vel [3*n], *id [n] (origId,
- * or -1 when absent), all caller-freed. */
+ * or -1 when absent), *cell [n] (celli of positions, a hint: -1 allowed),
+ * all caller-freed. */
 ump_status fio_read_cloud(const char *dir, const char *cloud, size_t *n, double **pos, double **vel,
-                          int64_t **id, ump_err *err);
+                          int64_t **id, ump_idx **cell, ump_err *err);
 
 #endif

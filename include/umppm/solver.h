@@ -67,10 +67,12 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
 void sol_free(sol **S);
 
 /* Replace the particles (restart from a cloud): positions and velocities of
- * n particles; cells are located; particles outside the mesh are dropped
- * (their number is returned in *dropped). */
+ * n particles; each is located by a walk starting at its hint cell [n]
+ * (the cloud's celli; NULL or -1: cell 0), so a restart costs O(N) when the
+ * hints are right; particles outside the mesh are dropped (*dropped). */
 ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y, const double *u,
-                             const double *v, const int64_t *id, size_t *dropped, ump_err *err);
+                             const double *v, const int64_t *id, const ump_idx *hint, size_t *dropped,
+                             ump_err *err);
 /* Set the cell pressure (restart) before the first step. */
 void sol_set_pressure(sol *S, const double *p);
 

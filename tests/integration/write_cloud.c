@@ -42,7 +42,8 @@ int main(int argc, char **argv)
     size_t m;
     double *p2, *v2;
     int64_t *id2;
-    if (fio_read_cloud(dir, "umppmCloud", &m, &p2, &v2, &id2, &err) != UMP_OK) {
+    ump_idx *c2;
+    if (fio_read_cloud(dir, "umppmCloud", &m, &p2, &v2, &id2, &c2, &err) != UMP_OK) {
         fprintf(stderr, "write_cloud: read back: %s\n", err.msg);
         return 1;
     }
@@ -50,11 +51,12 @@ int main(int argc, char **argv)
     for (size_t i = 0; i < n && !bad; i++)
         for (int k = 0; k < 3; k++)
             bad |= fabs(p2[3 * i + (size_t)k] - pos[3 * i + (size_t)k]) > 1e-12 ||
-                   fabs(v2[3 * i + (size_t)k] - vel[3 * i + (size_t)k]) > 1e-12 || id2[i] != id[i];
+                   fabs(v2[3 * i + (size_t)k] - vel[3 * i + (size_t)k]) > 1e-12 || id2[i] != id[i] ||
+                   c2[i] != cell[i];
     if (bad) {
         fprintf(stderr, "write_cloud: read back differs\n");
         return 1;
     }
-    free(pos); free(vel); free(cell); free(id); free(p2); free(v2); free(id2);
+    free(pos); free(vel); free(cell); free(id); free(p2); free(v2); free(id2); free(c2);
     return 0;
 }
