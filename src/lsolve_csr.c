@@ -17,7 +17,8 @@ ump_status lsolve_mat_from_csr(lsolve_mat *A, size_t *cap, ump_idx n, const ump_
                                const ump_idx *col, const double *val, ump_err *err)
 {
     size_t nnz = (size_t)rowptr[n];
-    if (*cap < nnz || A->n < n || !A->Ap) {
+    if (*cap < nnz || !A->Ai) {
+        /* entries grow geometrically: particle counts fluctuate step to step */
         size_t nc = nnz > 2 * *cap ? nnz : 2 * *cap;
         ump_idx *Ai = ump_realloc_array(A->Ai, nc ? nc : 1, sizeof *Ai);
         if (!Ai)
@@ -27,11 +28,14 @@ ump_status lsolve_mat_from_csr(lsolve_mat *A, size_t *cap, ump_idx n, const ump_
         if (!Ax)
             return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor matrix: out of memory (%zu entries)", nnz);
         A->Ax = Ax;
+        *cap = nc;
+    }
+    if (A->n < n || !A->Ap) {
+        /* realloc to the same size is cheap; a smaller n keeps the block */
         ump_idx *Ap = ump_realloc_array(A->Ap, (size_t)n + 1, sizeof *Ap);
         if (!Ap)
             return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor matrix: out of memory (%ld rows)", (long)n);
         A->Ap = Ap;
-        *cap = nc;
     }
     A->n = n;
     memset(A->Ap, 0, ((size_t)n + 1) * sizeof *A->Ap);

@@ -35,7 +35,7 @@ echo 'FoamFile { version 2.0; format ascii; class dictionary; object transportPr
 "$TOOLDIR/setTaylorGreen" -case "$c" > /dev/null
 "$UMPPMFOAM" -case "$c" > "$c/log" 2>&1 || { echo "FAIL: umppmFoam"; tail -3 "$c/log"; exit 1; }
 fail=0
-read -r _ l2 _ linf < <(python3 "$top/tools/taylorGreenError.py" "$c" 0.2)
+read -r _ l2 _ linf _ < <(python3 "$top/tools/taylorGreenError.py" "$c" 0.2)
 echo "Taylor-Green N_m=400 t=0.2: L2 relative error $l2, max-speed decay error $linf"
 awk -v a="$l2" 'BEGIN { exit !(a < 0.08) }' || { echo "FAIL: L2 error $l2 >= 0.08"; fail=1; }
 awk -v a="$linf" 'BEGIN { exit !(a < 0.05) }' || { echo "FAIL: decay error $linf >= 0.05"; fail=1; }

@@ -669,6 +669,46 @@ static void test_random_differential(void **state)
     free(rowsum);
 }
 
+/* lsolve_mat_from_csr with a size that goes up and down every call (the
+ * predictor of adaptive UMPPM): the storage stays bounded by twice the
+ * largest matrix and every rebuild is the right matrix. Regression: the
+ * capacity used to double whenever n grew, overflowing after ~40 rises. */
+static void test_from_csr_fluctuating(void **state)
+{
+    (void)state;
+    ump_err err;
+    lsolve_mat *A = ump_alloc_array(1, sizeof *A);
+    assert_non_null(A);
+    size_t cap = 0;
+    enum { NMAX = 41 };
+    ump_idx rp[NMAX + 1], ci[3 * NMAX];
+    double cv[3 * NMAX], x[NMAX], y[NMAX];
+    for (int it = 0; it < 400; it++) {
+        ump_idx n = (ump_idx)(it % 2 ? 40 + it % 2 : 30 + it % 7);
+        size_t nz = 0;
+        rp[0] = 0;
+        for (ump_idx i = 0; i < n; i++) { /* tridiagonal, off-diagonals listed first */
+            if (i + 1 < n) { ci[nz] = i + 1; cv[nz++] = -1.0 - i; }
+            if (i > 0) { ci[nz] = i - 1; cv[nz++] = -2.0; }
+            ci[nz] = i;
+            cv[nz++] = 4.0 + it;
+            rp[i + 1] = (ump_idx)nz;
+        }
+        assert_int_equal(lsolve_mat_from_csr(A, &cap, n, rp, ci, cv, &err), UMP_OK);
+        assert_true(cap <= 2 * 3 * NMAX);
+        for (ump_idx i = 0; i < n; i++)
+            x[i] = 1.0 + i;
+        lsolve_mat_mult(A, x, y);
+        for (ump_idx i = 0; i < n; i++) {
+            double e = (4.0 + it) * x[i];
+            if (i + 1 < n) e += (-1.0 - i) * x[i + 1];
+            if (i > 0) e += -2.0 * x[i - 1];
+            TU_CLOSE(y[i], e, 1e-12);
+        }
+    }
+    lsolve_mat_free(&A);
+}
+
 /* allocation failures in assembly, factorization and the Krylov workspace
  * are reported as UMP_ERR_NOMEM (SuiteSparse's own allocations excepted) */
 static void test_out_of_memory(void **state)
@@ -730,6 +770,7 @@ int main(void)
         cmocka_unit_test(test_bicgstab),
         cmocka_unit_test(test_ilu0_exact),
         cmocka_unit_test(test_random_differential),
+        cmocka_unit_test(test_from_csr_fluctuating),
         cmocka_unit_test(test_out_of_memory),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# bench/taylorGreen.sh [-variant UMPPMstar] [-maxCo 0.25] [-deltaT DT] [-endTime 5] [n ...]
+# The Taylor-Green vortex of Section 4.1 of seed 000 (Re = 100, periodic unit
+# square, crossed triangles of Fig. 7: N_m = 4 n^2) for each n (default
+# 20 40 80: N_m = 1600 6400 25600), CFL maxCo (adjustTimeStep) or a fixed
+# deltaT, to endTime. Prints per run: N_m, particles, steps, seconds,
+# us per particle-step, peak RSS, and the errors at endTime (tools/
+# taylorGreenError.py): L2rel, decay error vs the sampled max, Eq. 41, Eq. 42;
+# then the observed orders between successive meshes.
+set -eu -o pipefail
+top=$(cd "$(dirname "$0")/.." && pwd)
+variant=UMPPMstar maxCo=0.25 deltaT="" endTime=5 lap=CPM
+while [ $# -gt 0 ]; do
+    case $1 in
+    -variant) variant=$2; shift 2 ;;
+    -maxCo) maxCo=$2; shift 2 ;;
+    -deltaT) deltaT=$2; shift 2 ;;
+    -endTime) endTime=$2; shift 2 ;;
+    -laplacian) lap=$2; shift 2 ;;
+    -*) echo "unknown option $1" >&2; exit 1 ;;
+    *) break ;;
+    esac
+done
+[ $# -gt 0 ] || set -- 20 40 80
+make -C "$top" -s >/dev/null
+bin=$top/bin
+work=${BENCH_WORK:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-tgbench.XXXXXX")}
+printf "# Taylor-Green Re=100 %s %s maxCo=%s deltaT=%s endTime=%s\n" "$variant" "$lap" "$maxCo" "${deltaT:-adjustable}" "$endTime"
+printf "%6s %7s %6s %8s %8s %7s %9s %9s %9s %9s\n" N_m particles steps seconds us/p-step RSS_MiB L2rel decay Eq41 Eq42
+prev=""
+for n in "$@"; do
+    c=$work/tg$n-$variant
+    rm -rf "$c"; mkdir -p "$c/system" "$c/constant"
+    if [ -n "$deltaT" ]; then
+        adj="deltaT $deltaT; adjustTimeStep no;"
+    else
+        # first step at the CFL limit: h = 1/n, |U| <= 1
+        adj="deltaT $(awk -v n="$n" -v c="$maxCo" 'BEGIN { print c / (2 * n) }'); adjustTimeStep yes; maxCo $maxCo;"
+    fi
+    cat > "$c/system/controlDict" <<CD
+FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }
+application umppmFoam; startFrom startTime; startTime 0; stopAt endTime; endTime $endTime;
+$adj writeControl adjustableRunTime; writeInterval $endTime; writeFormat ascii; writePrecision 15;
+CD
+    cat > "$c/system/fvSolution" <<FS
+FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }
+PISO { pRefCell 0; pRefValue 0; }
+UMPPM { variant $variant; laplacian $lap; }
+FS
+    echo 'FoamFile { version 2.0; format ascii; class dictionary; object transportProperties; } nu 0.01;' \
+        > "$c/constant/transportProperties"
+    "$bin/makeCrossedTriangleMesh" -case "$c" -n "$n" >/dev/null
+    "$bin/setTaylorGreen" -case "$c" >/dev/null
+    read -r sec rss rc < <(cd "$c" && python3 "$top/bench/run_measured.py" sh -c "$bin/umppmFoam > log 2>&1")
+    [ "$rc" = 0 ] || { echo "umppmFoam failed in $c (see $c/log)" >&2; exit 1; }
+    last=$(ls -d "$c"/[0-9]* | sed 's|.*/||' | sort -g | tail -1)
+    steps=$(grep -c '^Time = ' "$c/log")
+    np=$(grep -o 'Particles: [0-9]*' "$c/log" | awk '{ s += $2; k++ } END { print int(s / k) }')
+    read -r _ l2 _ dec _ e41 _ e42 < <(python3 "$top/tools/taylorGreenError.py" "$c" "$last")
+    us=$(awk -v s="$sec" -v p="$np" -v k="$steps" 'BEGIN { printf "%.2f", 1e6 * s / (p * k) }')
+    printf "%6d %7d %6d %8.2f %8s %7.0f %9.4g %9.4g %9.4g %9.4g\n" $((4 * n * n)) "$np" "$steps" "$sec" "$us" "$rss" "$l2" "$dec" "$e41" "$e42"
+    if [ -n "$prev" ]; then
+        set -- $prev
+        awk -v n0="$1" -v n1="$n" -v a0="$2" -v a1="$l2" -v b0="$3" -v b1="$e42" -v c0="$4" -v c1="$dec" 'BEGIN {
+            r = log(n1 / n0); printf "#   order %d->%d: L2rel %.2f  Eq42 %.2f  decay %.2f\n", n0, n1, log(a0 / a1) / r, log(b0 / b1) / r, log(c0 / c1) / r }'
+    fi
+    prev="$n $l2 $e42 $dec"
+done
+echo "# cases in $work"
