@@ -39,7 +39,7 @@ all: $(APP) $(TOOLS)
 
 $(BUILD)/tools/%: tools/%.c $(LIB)
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS) $(CFLAGS_ALL) -o $@ $< $(LIB) $(LDLIBS)
+	$(CC) $(CPPFLAGS) -DUMPPM_TOOLS_REF='"$(abspath tools/reference)"' $(CFLAGS_ALL) -o $@ $< $(LIB) $(LDLIBS)
 
 $(BUILD)/obj/%.o: src/%.c $(wildcard include/umppm/*.h) $(wildcard src/*.h)
 	@mkdir -p $(dir $@)
