@@ -1,0 +1,143 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# test_solver_channel.sh -- plane Poiseuille flow through the open
+# boundaries: a half channel [0,4] x [0,0.5] (H = 1 with the symmetryPlane
+# centreline at y = 0.5), 40 x 8 quads, uniform inlet u = 1 (fixedValue U,
+# zeroGradient p), outlet p = 0 with zeroGradient U (run 1) or inletOutlet U
+# (run 2), noSlip wall, nu = 0.1 (Re = U H / nu = 10), t = 6 (1.5 flow-
+# through times). The developed solution is u = 6 y (1 - y), dp/dx = -12 nu U / H^2
+# = -1.2. Asserts for umppmFoam (UMPPM*), on the columns of cells at
+# x = 1.55 .. 3.95:
+#   - max |u - 6y(1-y)| < 0.01 (measured 0.0067; the plug inflow is 1.0 off);
+#   - mean pressure gradient between x = 1.55 and 3.55 within 2% of -1.2
+#     (measured -1.189);
+#   - outflow = inflow to 1e-10 (continuity), particles leave through the
+#     outlet (counted in the log) and their number stays at N_m = 320;
+#   - icoFoam on the same mesh and boundary conditions agrees cell by cell:
+#     U relative L2 difference over the whole channel < 0.02 (measured
+#     0.0135, almost all of it in the first column of cells, where the plug
+#     inflow meets the wall), max |U - U_icoFoam| for x >= 1.55 < 0.005
+#     (measured 0.0019, rms 2e-4; each solver is 0.006 off 6y(1-y) there).
+# Needs UMPPMFOAM and TOOLDIR (foamCompare).
+set -eu -o pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+[ -n "${UMPPMFOAM:-}" ] && [ -x "$UMPPMFOAM" ] || { echo "FAIL: UMPPMFOAM not set" >&2; exit 2; }
+[ -n "${TOOLDIR:-}" ] && [ -x "$TOOLDIR/foamCompare" ] || { echo "FAIL: TOOLDIR not set" >&2; exit 2; }
+. "$here/lib.sh"
+of_env
+work=$(mktemp -d "${TMPDIR:-/tmp}/umppm-channel.XXXXXX")
+fail=0
+check() { # check NAME VALUE LOW HIGH
+    if awk -v a="$2" -v l="$3" -v h="$4" 'BEGIN { exit !(a + 0 == a && a >= l && a <= h) }'; then
+        echo "  ok   $1 = $2 (in [$3, $4])"
+    else
+        echo "  FAIL $1 = $2 (expected [$3, $4])"
+        fail=1
+    fi
+}
+# internal values of an ascii field, one line per cell (vector: 3 columns)
+values() {
+    awk '/^internalField/ { s = 1; next } s == 1 && /^\(/ { s = 2; next } s == 2 && /^\)/ { exit }
+         s == 2 { gsub(/[()]/, ""); print }' "$1"
+}
+make_channel() { # make_channel DIR OUTLET_U_ENTRY
+    local c=$1
+    mkdir -p "$c/system" "$c/constant" "$c/0"
+    cat > "$c/system/blockMeshDict" <<'EOD'
+FoamFile { version 2.0; format ascii; class dictionary; object blockMeshDict; }
+vertices ((0 0 0) (4 0 0) (4 0.5 0) (0 0.5 0) (0 0 0.1) (4 0 0.1) (4 0.5 0.1) (0 0.5 0.1));
+blocks (hex (0 1 2 3 4 5 6 7) (40 8 1) simpleGrading (1 1 1));
+boundary
+(
+    inlet { type patch; faces ((0 4 7 3)); }
+    outlet { type patch; faces ((2 6 5 1)); }
+    wall { type wall; faces ((1 5 4 0)); }
+    centreline { type symmetryPlane; faces ((3 7 6 2)); }
+    frontAndBack { type empty; faces ((0 3 2 1) (4 5 6 7)); }
+);
+EOD
+    cat > "$c/system/controlDict" <<'EOD'
+FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }
+application umppmFoam; startFrom startTime; startTime 0; stopAt endTime; endTime 6;
+deltaT 0.005; writeControl runTime; writeInterval 3; writeFormat ascii; writePrecision 12;
+EOD
+    cat > "$c/system/fvSchemes" <<'EOD'
+FoamFile { version 2.0; format ascii; class dictionary; object fvSchemes; }
+ddtSchemes { default Euler; }
+gradSchemes { default Gauss linear; }
+divSchemes { default none; div(phi,U) Gauss linear; }
+laplacianSchemes { default Gauss linear corrected; }
+interpolationSchemes { default linear; }
+snGradSchemes { default corrected; }
+EOD
+    cat > "$c/system/fvSolution" <<'EOD'
+FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }
+solvers
+{
+    p { solver PCG; preconditioner DIC; tolerance 1e-10; relTol 0; }
+    pFinal { $p; }
+    U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-10; relTol 0; }
+}
+PISO { nCorrectors 2; nNonOrthogonalCorrectors 0; }
+EOD
+    echo 'FoamFile { version 2.0; format ascii; class dictionary; object transportProperties; } nu [0 2 -1 0 0 0 0] 0.1;' \
+        > "$c/constant/transportProperties"
+    cat > "$c/0/U" <<EOD
+FoamFile { version 2.0; format ascii; class volVectorField; object U; }
+dimensions [0 1 -1 0 0 0 0];
+internalField uniform (1 0 0);
+boundaryField
+{
+    inlet { type fixedValue; value uniform (1 0 0); }
+    outlet { $2 }
+    wall { type noSlip; }
+    centreline { type symmetryPlane; }
+    frontAndBack { type empty; }
+}
+EOD
+    cat > "$c/0/p" <<'EOD'
+FoamFile { version 2.0; format ascii; class volScalarField; object p; }
+dimensions [0 2 -2 0 0 0 0];
+internalField uniform 0;
+boundaryField
+{
+    inlet { type zeroGradient; }
+    outlet { type fixedValue; value uniform 0; }
+    wall { type zeroGradient; }
+    centreline { type symmetryPlane; }
+    frontAndBack { type empty; }
+}
+EOD
+    run_in "$c" blockMesh blockMesh
+}
+for outlet in "type zeroGradient;" "type inletOutlet; inletValue uniform (0 0 0); value uniform (1 0 0);"; do
+    name=$(echo "$outlet" | awk '{ print $2 }' | tr -d ';')
+    c=$work/$name
+    echo "outlet U: $outlet"
+    make_channel "$c" "$outlet" || { fail=1; continue; }
+    "$UMPPMFOAM" -case "$c" > "$c/log" 2>&1 || { echo "FAIL: umppmFoam"; tail -3 "$c/log"; fail=1; continue; }
+    # cell (i, j) is j*40 + i, centre ((i + 0.5)/10, (j + 0.5)/16)
+    err=$(values "$c/6/U" | awk '{ i = (NR - 1) % 40; j = int((NR - 1) / 40); y = (j + 0.5) / 16
+        if (i >= 15) { e = $1 - 6 * y * (1 - y); if (e < 0) e = -e; if (e > m) m = e } } END { print m }')
+    check "$name: max |u - 6y(1-y)| for x >= 1.55" "$err" 0 0.01
+    grad=$(values "$c/6/p" | awk '{ i = (NR - 1) % 40; if (i == 15) a += $1 / 8; if (i == 35) b += $1 / 8 }
+        END { print (b - a) / 2 }')
+    check "$name: dp/dx" "$grad" -1.224 -1.176
+    cmax=$(grep -o 'max = [0-9.e+-]*' "$c/log" | awk '{ if ($3 > m) m = $3 } END { print m + 0 }')
+    check "$name: max per-cell continuity error" "$cmax" 0 1e-12
+    left=$(grep -o 'left the domain [0-9]*' "$c/log" | awk '{ s += $4 } END { print s + 0 }')
+    check "$name: particles that left through the outlet" "$left" 100 1e9
+    np=$(grep -o '^Particles: [0-9]*' "$c/log" | tail -1 | awk '{ print $2 }')
+    check "$name: particles at the end" "$np" 320 320
+    ic=$c/icoFoam
+    mkdir -p "$ic" && cp -r "$c/system" "$c/constant" "$c/0" "$ic/"
+    run_in "$ic" icoFoam icoFoam || { fail=1; continue; }
+    rel=$("$TOOLDIR/foamCompare" "$c" 6 "$ic" 6 U | awk '$1 == "U" { print $4 }')
+    check "$name: U vs icoFoam, relative L2" "$rel" 0 0.02
+    dmax=$(paste <(values "$c/6/U") <(values "$ic/6/U") | awk '{ i = (NR - 1) % 40
+        d = sqrt(($1 - $4)^2 + ($2 - $5)^2); if (i >= 15 && d > m) m = d } END { print m + 0 }')
+    check "$name: max |U - U_icoFoam| for x >= 1.55" "$dmax" 0 0.005
+done
+[ "$fail" = 0 ] || { echo "work dir kept: $work"; exit 1; }
+rm -rf "$work"
+echo "PASS"
