@@ -21,9 +21,9 @@ make -C "$top" -s >/dev/null
 work=${BENCH_WORK:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-ghia.XXXXXX")}
 mkdir -p "$work"
 printf "# lid-driven cavity Re=%s n=%s endTime=%s maxCo=%s (errors vs Ghia: u on x=0.5, v on y=0.5)\n" "$Re" "$n" "$endTime" "$maxCo"
-printf "%-5s %-9s %6s %7s %6s %8s %8s | %7s %7s %7s %7s | %7s %7s %7s %7s | %7s %7s | %8s\n" \
-    mesh variant cells partcl steps seconds us/p-st u_rms u_max v_rms v_max ico_urms ico_umax ico_vrms ico_vmax \
-    UvIcoL2 UvIcoLi cont_max
+printf "%-5s %-9s %6s %7s %6s %8s %8s %7s | %7s %7s %7s %7s | %7s %7s %7s %7s %6s %7s | %7s %7s | %8s\n" \
+    mesh variant cells partcl steps seconds us/p-st RSS_MiB u_rms u_max v_rms v_max ico_urms ico_umax ico_vrms ico_vmax \
+    ico_s ratio UvIcoL2 UvIcoLi cont_max
 for mesh in $meshes; do
     for v in $variants; do
         d=$work/Re$Re-$mesh-n$n-$v
@@ -34,10 +34,12 @@ for mesh in $meshes; do
         get() { echo "$line" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
         nps=$(grep -o '^Particles: [0-9]*' "$d/log.umppmFoam" | awk '{ s += $2 } END { print s }')
         us=$(awk -v s="$(get seconds)" -v p="$nps" 'BEGIN { printf "%.2f", 1e6 * s / p }')
-        printf "%-5s %-9s %6s %7s %6s %8s %8s | %7s %7s %7s %7s | %7s %7s %7s %7s | %7.4f %7.4f | %8.2g\n" \
-            "$mesh" "$v" "$(get cells)" "$(get particles)" "$(get steps)" "$(get seconds)" "$us" \
+        rss=$(get rss_MiB)
+        ratio=$(awk -v a="$(get seconds)" -v b="$(get ico_seconds)" 'BEGIN { printf "%.1f", a / b }')
+        printf "%-5s %-9s %6s %7s %6s %8s %8s %7s | %7s %7s %7s %7s | %7s %7s %7s %7s %6s %7s | %7.4f %7.4f | %8.2g\n" \
+            "$mesh" "$v" "$(get cells)" "$(get particles)" "$(get steps)" "$(get seconds)" "$us" "${rss:--}" \
             "$(get u_rms)" "$(get u_max)" "$(get v_rms)" "$(get v_max)" \
-            "$(get ico_u_rms)" "$(get ico_u_max)" "$(get ico_v_rms)" "$(get ico_v_max)" \
+            "$(get ico_u_rms)" "$(get ico_u_max)" "$(get ico_v_rms)" "$(get ico_v_max)" "$(get ico_seconds)" "$ratio" \
             "$(get UvsIco_L2rel)" "$(get UvsIco_Linfrel)" "$(get cont_max)"
     done
 done

@@ -7,10 +7,12 @@
 # deltaT, to endTime. Prints per run: N_m, particles, steps, seconds,
 # us per particle-step, peak RSS, and the errors at endTime (tools/
 # taylorGreenError.py): L2rel, decay error vs the sampled max, Eq. 41, Eq. 42;
-# then the observed orders between successive meshes.
+# then the observed orders between successive meshes. With -icoFoam yes,
+# icoFoam runs the same case (same mesh and 0/, fixed deltaT = the mean of
+# umppmFoam's steps) and its errors and time are printed below each row.
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
-variant=UMPPMstar maxCo=0.25 deltaT="" endTime=5 lap=CPM
+variant=UMPPMstar maxCo=0.25 deltaT="" endTime=5 lap=CPM ico=no
 while [ $# -gt 0 ]; do
     case $1 in
     -variant) variant=$2; shift 2 ;;
@@ -18,6 +20,7 @@ while [ $# -gt 0 ]; do
     -deltaT) deltaT=$2; shift 2 ;;
     -endTime) endTime=$2; shift 2 ;;
     -laplacian) lap=$2; shift 2 ;;
+    -icoFoam) ico=$2; shift 2 ;;
     -*) echo "unknown option $1" >&2; exit 1 ;;
     *) break ;;
     esac
@@ -43,9 +46,18 @@ FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }
 application umppmFoam; startFrom startTime; startTime 0; stopAt endTime; endTime $endTime;
 $adj writeControl adjustableRunTime; writeInterval $endTime; writeFormat ascii; writePrecision 15;
 CD
+    cat > "$c/system/fvSchemes" <<FS
+FoamFile { version 2.0; format ascii; class dictionary; object fvSchemes; }
+ddtSchemes { default Euler; } gradSchemes { default Gauss linear; }
+divSchemes { default none; div(phi,U) Gauss linear; }
+laplacianSchemes { default Gauss linear corrected; } interpolationSchemes { default linear; }
+snGradSchemes { default corrected; }
+FS
     cat > "$c/system/fvSolution" <<FS
 FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }
-PISO { pRefCell 0; pRefValue 0; }
+solvers { p { solver PCG; preconditioner DIC; tolerance 1e-10; relTol 0; } pFinal { \$p; }
+          U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-10; relTol 0; } }
+PISO { nCorrectors 2; nNonOrthogonalCorrectors 1; pRefCell 0; pRefValue 0; }
 UMPPM { variant $variant; laplacian $lap; }
 FS
     echo 'FoamFile { version 2.0; format ascii; class dictionary; object transportProperties; } nu 0.01;' \
@@ -64,6 +76,25 @@ FS
         set -- $prev
         awk -v n0="$1" -v n1="$n" -v a0="$2" -v a1="$l2" -v b0="$3" -v b1="$e42" -v c0="$4" -v c1="$dec" 'BEGIN {
             r = log(n1 / n0); printf "#   order %d->%d: L2rel %.2f  Eq42 %.2f  decay %.2f\n", n0, n1, log(a0 / a1) / r, log(b0 / b1) / r, log(c0 / c1) / r }'
+    fi
+    if [ "$ico" = yes ]; then
+        ic=$c/icoFoam
+        rm -rf "$ic"; mkdir -p "$ic"
+        cp -r "$c/system" "$c/constant" "$c/0" "$ic/"
+        dtm=$(awk -v t="$endTime" -v k="$steps" 'BEGIN { printf "%.8g", t / k }')
+        cat > "$ic/system/controlDict" <<CD
+FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }
+application icoFoam; startFrom startTime; startTime 0; stopAt endTime; endTime $endTime;
+deltaT $dtm; writeControl runTime; writeInterval $endTime; writeFormat ascii; writePrecision 15;
+CD
+        export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
+        read -r isec irss irc < <(python3 "$top/bench/run_measured.py" -o "$ic/log" icoFoam -case "$ic")
+        [ "$irc" = 0 ] || { echo "icoFoam failed in $ic (see $ic/log)" >&2; exit 1; }
+        ilast=$(ls -d "$ic"/[0-9]* | sed 's|.*/||' | sort -g | tail -1)
+        read -r _ il2 _ idec _ ie41 _ ie42 < <(python3 "$top/tools/taylorGreenError.py" "$ic" "$ilast")
+        isteps=$(grep -c '^Time = ' "$ic/log")
+        printf "%6s %7s %6d %8.2f %8s %7.0f %9.4g %9.4g %9.4g %9.4g  icoFoam (umppmFoam/icoFoam time %.1f)\n" "" "" "$isteps" "$isec" "" "$irss" "$il2" "$idec" "$ie41" "$ie42" \
+            "$(awk -v a="$sec" -v b="$isec" 'BEGIN { print a / b }')"
     fi
     prev="$n $l2 $e42 $dec"
 done

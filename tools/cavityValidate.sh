@@ -19,10 +19,10 @@
 # bin/) and OpenFOAM v1912 on PATH.
 # Prints the two logs' last lines, the ghiaCompare and foamCompare tables,
 # and one summary line:
-#   RESULT mesh=quad cells=400 particles=... steps=... seconds=...
+#   RESULT mesh=quad cells=400 particles=... steps=... seconds=... rss_MiB=...
 #          u_rms=... u_max=... v_rms=... v_max=... (umppmFoam vs Ghia)
 #          ico_u_rms=... ico_u_max=... ico_v_rms=... ico_v_max=...
-#          UvsIco_L2rel=... UvsIco_Linfrel=... cont_max=...
+#          ico_seconds=... ico_steps=... UvsIco_L2rel=... UvsIco_Linfrel=...
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 : "${BINDIR:=$top/bin}"
@@ -161,9 +161,12 @@ run "$dir/log.checkMesh" checkMesh -case "$dir"
 grep -q '^Mesh OK' "$dir/log.checkMesh" || { echo "cavityValidate.sh: checkMesh failed ($dir/log.checkMesh)" >&2; exit 1; }
 cells=$(awk '/^ *cells:/ { print $2; exit }' "$dir/log.checkMesh")
 
-t0=$(date +%s.%N)
-run "$dir/log.umppmFoam" "$umppm" -case "$dir"
-secs=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')
+read -r secs rss rc < <(python3 "$top/bench/run_measured.py" -o "$dir/log.umppmFoam" "$umppm" -case "$dir")
+if [ "$rc" != 0 ]; then
+    echo "cavityValidate.sh: umppmFoam failed (log $dir/log.umppmFoam):" >&2
+    tail -5 "$dir/log.umppmFoam" >&2
+    exit 1
+fi
 last=$(ls -d "$dir"/[0-9]* | sed 's|.*/||' | sort -g | tail -1)
 steps=$(grep -c '^Time = ' "$dir/log.umppmFoam")
 np=$(grep -o '^Particles: [0-9]*' "$dir/log.umppmFoam" | tail -1 | awk '{ print $2 }')
@@ -171,7 +174,7 @@ cmax=$(grep -o 'max = [0-9.e+-]*' "$dir/log.umppmFoam" | awk '{ if ($3 > m) m = 
 read -r _ _ u_rms u_max v_rms v_max < <("$tooldir/ghiaCompare" -Re "$Re" "$dir" "$last" | tail -1)
 echo "umppmFoam: $cells cells, $np particles at the end, $steps steps, $secs s; max per-cell continuity error $cmax"
 "$tooldir/ghiaCompare" -Re "$Re" "$dir" "$last"
-result="RESULT mesh=$mesh cells=$cells particles=$np steps=$steps seconds=$secs u_rms=$u_rms u_max=$u_max v_rms=$v_rms v_max=$v_max cont_max=$cmax"
+result="RESULT mesh=$mesh cells=$cells particles=$np steps=$steps seconds=$secs rss_MiB=$rss u_rms=$u_rms u_max=$u_max v_rms=$v_rms v_max=$v_max cont_max=$cmax"
 if [ "$ico" = yes ]; then
     ic=$dir/icoFoam
     mkdir -p "$ic"
@@ -179,12 +182,14 @@ if [ "$ico" = yes ]; then
     mkdir -p "$ic/0" && cp "$dir/0/U" "$dir/0/p" "$ic/0/"
     sed -i "s/^deltaT [^;]*; adjustTimeStep yes;/deltaT $dtico; adjustTimeStep no;/; s/^application umppmFoam/application icoFoam/" \
         "$ic/system/controlDict"
+    t1=$(date +%s.%N)
     run "$ic/log.icoFoam" icoFoam -case "$ic"
+    isecs=$(awk -v a="$t1" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')
     ilast=$(ls -d "$ic"/[0-9]* | sed 's|.*/||' | sort -g | tail -1)
     "$tooldir/ghiaCompare" -Re "$Re" "$ic" "$ilast" | tail -1
     read -r _ _ i_u_rms i_u_max i_v_rms i_v_max < <("$tooldir/ghiaCompare" -Re "$Re" "$ic" "$ilast" | tail -1)
     "$tooldir/foamCompare" "$dir" "$last" "$ic" "$ilast" U p | tee "$dir/log.foamCompare"
     read -r l2r linfr < <(awk '$1 == "U" { print $4, $5 }' "$dir/log.foamCompare")
-    result="$result ico_u_rms=$i_u_rms ico_u_max=$i_u_max ico_v_rms=$i_v_rms ico_v_max=$i_v_max UvsIco_L2rel=$l2r UvsIco_Linfrel=$linfr"
+    result="$result ico_u_rms=$i_u_rms ico_u_max=$i_u_max ico_v_rms=$i_v_rms ico_v_max=$i_v_max ico_seconds=$isecs ico_steps=$(grep -c '^Time = ' "$ic/log.icoFoam") UvsIco_L2rel=$l2r UvsIco_Linfrel=$linfr"
 fi
 echo "$result"
