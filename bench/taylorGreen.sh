@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# bench/taylorGreen.sh [-variant UMPPMstar] [-maxCo 0.25] [-deltaT DT] [-endTime 5] [n ...]
+# bench/taylorGreen.sh [-variant UMPPMstar] [-maxCo 0.25 | -deltaT DT | -cfl C] [-endTime 5]
+#                      [-laplacian CPM] [-icoFoam no] [n ...]
 # The Taylor-Green vortex of Section 4.1 of seed 000 (Re = 100, periodic unit
 # square, crossed triangles of Fig. 7: N_m = 4 n^2) for each n (default
-# 20 40 80: N_m = 1600 6400 25600), CFL maxCo (adjustTimeStep) or a fixed
-# deltaT, to endTime. Prints per run: N_m, particles, steps, seconds,
+# 20 40 80: N_m = 1600 6400 25600), CFL maxCo (adjustTimeStep, OpenFOAM's
+# Courant number of the current flow), a fixed deltaT, or -cfl C: the
+# paper's fixed step dt = C l_avg / U with U = 1 and l_avg = sqrt(mean cell
+# area) = 1/(2n), to endTime. Prints per run: N_m, particles, steps, seconds,
 # us per particle-step, peak RSS, and the errors at endTime (tools/
 # taylorGreenError.py): L2rel, decay error vs the sampled max, Eq. 41, Eq. 42;
 # then the observed orders between successive meshes. With -icoFoam yes,
@@ -12,12 +15,13 @@
 # umppmFoam's steps) and its errors and time are printed below each row.
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
-variant=UMPPMstar maxCo=0.25 deltaT="" endTime=5 lap=CPM ico=no
+variant=UMPPMstar maxCo=0.25 deltaT="" cfl="" endTime=5 lap=CPM ico=no
 while [ $# -gt 0 ]; do
     case $1 in
     -variant) variant=$2; shift 2 ;;
     -maxCo) maxCo=$2; shift 2 ;;
     -deltaT) deltaT=$2; shift 2 ;;
+    -cfl) cfl=$2; shift 2 ;;
     -endTime) endTime=$2; shift 2 ;;
     -laplacian) lap=$2; shift 2 ;;
     -icoFoam) ico=$2; shift 2 ;;
@@ -29,13 +33,18 @@ done
 make -C "$top" -s >/dev/null
 bin=$top/bin
 work=${BENCH_WORK:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-tgbench.XXXXXX")}
-printf "# Taylor-Green Re=100 %s %s maxCo=%s deltaT=%s endTime=%s\n" "$variant" "$lap" "$maxCo" "${deltaT:-adjustable}" "$endTime"
+if [ -n "$cfl" ]; then steprule="fixed deltaT = $cfl l_avg / U"
+elif [ -n "$deltaT" ]; then steprule="fixed deltaT = $deltaT"
+else steprule="adjustTimeStep maxCo = $maxCo"; fi
+printf "# Taylor-Green Re=100 %s %s, %s, endTime=%s\n" "$variant" "$lap" "$steprule" "$endTime"
 printf "%6s %7s %6s %8s %8s %7s %9s %9s %9s %9s\n" N_m particles steps seconds us/p-step RSS_MiB L2rel decay Eq41 Eq42
 prev=""
 for n in "$@"; do
     c=$work/tg$n-$variant
     rm -rf "$c"; mkdir -p "$c/system" "$c/constant"
-    if [ -n "$deltaT" ]; then
+    if [ -n "$cfl" ]; then
+        adj="deltaT $(awk -v n="$n" -v c="$cfl" 'BEGIN { printf "%.10g", c / (2 * n) }'); adjustTimeStep no;"
+    elif [ -n "$deltaT" ]; then
         adj="deltaT $deltaT; adjustTimeStep no;"
     else
         # first step at the CFL limit: h = 1/n, |U| <= 1
