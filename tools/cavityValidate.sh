@@ -7,6 +7,7 @@
 #   cavityValidate.sh -dir DIR [-Re 100] [-mesh quad|tri] [-n 20]
 #                     [-variant UMPPMstar] [-laplacian CPM] [-alpha 0.09]
 #                     [-endTime 10] [-maxCo 0.25] [-icoFoam yes|no]
+#                     [-lid fixedValue|movingWallVelocity]
 #
 # -mesh quad: n x n uniform quadrilaterals (blockMesh); -mesh tri: gmsh
 # Delaunay triangles of size 1.65/n (about as many cells as n x n quads),
@@ -29,7 +30,7 @@ top=$(cd "$(dirname "$0")/.." && pwd)
 umppm=${UMPPMFOAM:-$BINDIR/umppmFoam}
 tooldir=${TOOLDIR:-$BINDIR}
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
-dir="" Re=100 mesh=quad n=20 variant=UMPPMstar lap=CPM alpha=0.09 endTime=10 maxCo=0.25 ico=yes
+dir="" Re=100 mesh=quad n=20 variant=UMPPMstar lap=CPM alpha=0.09 endTime=10 maxCo=0.25 ico=yes lid=fixedValue
 usage() {
     sed -n '5,9p' "$0" | sed 's/^# \{0,1\}//' >&2
     exit 1
@@ -39,13 +40,14 @@ while [ $# -gt 0 ]; do
     case $1 in
     -dir) dir=$2 ;; -Re) Re=$2 ;; -mesh) mesh=$2 ;; -n) n=$2 ;; -variant) variant=$2 ;;
     -laplacian) lap=$2 ;; -alpha) alpha=$2 ;; -endTime) endTime=$2 ;; -maxCo) maxCo=$2 ;;
-    -icoFoam) ico=$2 ;;
+    -icoFoam) ico=$2 ;; -lid) lid=$2 ;;
     *) usage ;;
     esac
     shift 2
 done
 [ -n "$dir" ] || usage
 case $mesh in quad | tri) ;; *) echo "cavityValidate.sh: -mesh must be quad or tri" >&2; exit 1 ;; esac
+case $lid in fixedValue | movingWallVelocity) ;; *) echo "cavityValidate.sh: -lid must be fixedValue or movingWallVelocity" >&2; exit 1 ;; esac
 [ ! -e "$dir" ] || { echo "cavityValidate.sh: $dir exists" >&2; exit 1; }
 for b in "$umppm" "$tooldir/foamCompare" "$tooldir/ghiaCompare"; do
     [ -x "$b" ] || { echo "cavityValidate.sh: $b missing (run make)" >&2; exit 1; }
@@ -90,12 +92,12 @@ EOF
 header dictionary transportProperties > "$dir/constant/transportProperties"
 echo "nu [0 2 -1 0 0 0 0] $nu;" >> "$dir/constant/transportProperties"
 header volVectorField U > "$dir/0/U"
-cat >> "$dir/0/U" <<'EOF'
+cat >> "$dir/0/U" <<EOF
 dimensions [0 1 -1 0 0 0 0];
 internalField uniform (0 0 0);
 boundaryField
 {
-    movingWall { type fixedValue; value uniform (1 0 0); }
+    movingWall { type $lid; value uniform (1 0 0); }
     fixedWalls { type noSlip; }
     frontAndBack { type empty; }
 }

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # test_solver_cavity.sh -- lid-driven cavity, Re = 100, t = 10 (close to
-# steady), on a 20 x 20 quad mesh (UMPPM* and UMPPM) and a ~400-cell gmsh
-# triangle mesh (UMPPM*), each also run by icoFoam on the same mesh
+# steady), on a 20 x 20 quad mesh (UMPPM* and UMPPM; lid fixedValue) and a
+# ~400-cell gmsh triangle mesh (UMPPM*; lid movingWallVelocity), each also
+# run by icoFoam on the same mesh
 # (tools/cavityValidate.sh). Asserts, against Ghia et al. (1982) Table I/II
 # on the centrelines (15 interior points each):
 #   - RMS error of u and of v < 0.012 on quads (measured 0.004..0.008),
@@ -32,10 +33,10 @@ check() { # check NAME VALUE BOUND
         fail=1
     fi
 }
-for run in "quad UMPPMstar" "quad UMPPM" "tri UMPPMstar"; do
+for run in "quad UMPPMstar fixedValue" "quad UMPPM fixedValue" "tri UMPPMstar movingWallVelocity"; do
     set -- $run
     d=$work/$1-$2
-    if ! "$top/tools/cavityValidate.sh" -dir "$d" -Re 100 -mesh "$1" -n 20 -variant "$2" -endTime 10 \
+    if ! "$top/tools/cavityValidate.sh" -dir "$d" -Re 100 -mesh "$1" -n 20 -variant "$2" -lid "$3" -endTime 10 \
         > "$d.log" 2>&1; then
         echo "FAIL: cavityValidate.sh $run:"
         tail -5 "$d.log"
