@@ -627,6 +627,54 @@ static void closest_image(const lattice *L, double dx, double dy, double *sx, do
 }
 
 /* Step 4: vertex-neighbour stencils N1, N2 (Figs. 1, 4, 5). */
+/* Sorted CSR stencils by union: list(c) = (outer(c) if with_outer) united
+ * with inner(o) for o in outer(c), without c itself; outer(c) =
+ * oidx[ooff[c] .. ooff[c+1]-1], mapped through omap when given; inner(o) =
+ * iidx[ioff[o] .. ioff[o+1]-1]. Two passes (count, then fill) with a stamp
+ * per cell in mark [nc] (any contents on entry). off [nc+1] is filled, *out
+ * allocated. */
+static ump_status stencil_union(ump_idx nc, const ump_idx *ooff, const ump_idx *oidx, const ump_idx *omap,
+                                const ump_idx *ioff, const ump_idx *iidx, int with_outer, ump_idx *mark,
+                                ump_idx *off, ump_idx **out)
+{
+    ump_idx *list = NULL;
+    off[0] = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        for (ump_idx c = 0; c < nc; c++)
+            mark[c] = -1;
+        for (ump_idx c = 0; c < nc; c++) {
+            ump_idx cnt = 0, base = off[c];
+            mark[c] = c;
+            for (ump_idx a = ooff[c]; a < ooff[c + 1]; a++) {
+                ump_idx o = omap ? omap[oidx[a]] : oidx[a];
+                if (with_outer && mark[o] != c) {
+                    mark[o] = c;
+                    if (pass)
+                        list[base + cnt] = o;
+                    cnt++;
+                }
+                for (ump_idx b = ioff[o]; b < ioff[o + 1]; b++) {
+                    ump_idx q = iidx[b];
+                    if (mark[q] == c)
+                        continue;
+                    mark[q] = c;
+                    if (pass)
+                        list[base + cnt] = q;
+                    cnt++;
+                }
+            }
+            if (!pass)
+                off[c + 1] = off[c] + cnt;
+            else
+                qsort(list + base, (size_t)cnt, sizeof(ump_idx), cmp_idx);
+        }
+        if (!pass && !(list = ump_alloc_array((size_t)off[nc], sizeof *list)))
+            return UMP_ERR_NOMEM;
+    }
+    *out = list;
+    return UMP_OK;
+}
+
 static ump_status build_stencils(mesh2d *m, const char *dir, ump_err *err)
 {
     ump_idx nc = m->ncells, nv = m->nverts;
@@ -651,83 +699,12 @@ static ump_status build_stencils(mesh2d *m, const char *dir, ump_err *err)
             ump_idx v = m->vert_id[m->cell_verts[k]];
             vcell[voff[v] + fill[v]++] = c;
         }
-    for (ump_idx c = 0; c < nc; c++)
-        mark[c] = -1;
-    /* N1: two passes (count, fill) */
-    size_t tot = 0;
-    for (int pass = 0; pass < 2; pass++) {
-        tot = 0;
-        for (ump_idx c = 0; c < nc; c++) {
-            ump_idx cnt = 0;
-            mark[c] = c + pass * nc;
-            for (ump_idx k = m->cell_off[c]; k < m->cell_off[c + 1]; k++) {
-                ump_idx v = m->vert_id[m->cell_verts[k]];
-                for (ump_idx j = voff[v]; j < voff[v + 1]; j++) {
-                    ump_idx q = vcell[j];
-                    if (mark[q] == c + pass * nc)
-                        continue;
-                    mark[q] = c + pass * nc;
-                    if (pass)
-                        m->n1[tot + cnt] = q;
-                    cnt++;
-                }
-            }
-            if (!pass)
-                m->n1_off[c + 1] = m->n1_off[c] + cnt;
-            else
-                qsort(m->n1 + tot, (size_t)cnt, sizeof(ump_idx), cmp_idx);
-            tot += (size_t)cnt;
-        }
-        if (!pass) {
-            ALLOC(m->n1, tot);
-            if (!m->n1)
-                goto nomem;
-            for (ump_idx c = 0; c < nc; c++)
-                mark[c] = -1;
-        }
-    }
-    /* N2 = N1 of N1, union N1, without the cell itself */
-    for (ump_idx c = 0; c < nc; c++)
-        mark[c] = -1;
-    for (int pass = 0; pass < 2; pass++) {
-        tot = 0;
-        for (ump_idx c = 0; c < nc; c++) {
-            ump_idx cnt = 0;
-            ump_idx stamp = c + pass * nc;
-            mark[c] = stamp;
-            for (ump_idx a = m->n1_off[c]; a < m->n1_off[c + 1]; a++) {
-                ump_idx q = m->n1[a];
-                if (mark[q] != stamp) {
-                    mark[q] = stamp;
-                    if (pass)
-                        m->n2[tot + cnt] = q;
-                    cnt++;
-                }
-                for (ump_idx b = m->n1_off[q]; b < m->n1_off[q + 1]; b++) {
-                    ump_idx r = m->n1[b];
-                    if (mark[r] == stamp)
-                        continue;
-                    mark[r] = stamp;
-                    if (pass)
-                        m->n2[tot + cnt] = r;
-                    cnt++;
-                }
-            }
-            if (!pass)
-                m->n2_off[c + 1] = m->n2_off[c] + cnt;
-            else
-                qsort(m->n2 + tot, (size_t)cnt, sizeof(ump_idx), cmp_idx);
-            tot += (size_t)cnt;
-        }
-        if (!pass) {
-            ALLOC(m->n2, tot);
-            if (!m->n2)
-                goto nomem;
-            for (ump_idx c = 0; c < nc; c++)
-                mark[c] = -1;
-        }
-    }
-    nbuf = tot;
+    /* N1(c): the cells of c's vertices; N2(c): N1(c) and the N1 of each */
+    if (stencil_union(nc, m->cell_off, m->cell_verts, m->vert_id, voff, vcell, 0, mark, m->n1_off, &m->n1) !=
+            UMP_OK ||
+        stencil_union(nc, m->n1_off, m->n1, NULL, m->n1_off, m->n1, 1, mark, m->n2_off, &m->n2) != UMP_OK)
+        goto nomem;
+    nbuf = (size_t)m->n2_off[nc];
     if (m->has_cyclic) {
         lattice L = {0, {{0, 0}}};
         for (ump_idx f = m->ninternal - 1; f >= 0 && m->face_pm2[f] >= 0; f--) {
