@@ -186,3 +186,35 @@ write_geometry() {
         fi
     done
 }
+
+# Checks of measured figures for the solver tests: print "ok"/"FAIL" with
+# the value and set the caller's variable fail=1 on failure (a non-number
+# fails too).
+#   check_range NAME VALUE LOW HIGH    LOW <= VALUE <= HIGH
+#   check_below NAME VALUE BOUND       VALUE < BOUND
+check_range() {
+    if awk -v a="$2" -v l="$3" -v h="$4" 'BEGIN { exit !(a + 0 == a && a >= l && a <= h) }'; then
+        echo "  ok   $1 = $2 (in [$3, $4])"
+    else
+        echo "  FAIL $1 = $2 (expected [$3, $4])"
+        fail=1
+    fi
+}
+check_below() {
+    if awk -v a="$2" -v b="$3" 'BEGIN { exit !(a + 0 == a && a < b) }'; then
+        echo "  ok   $1 = $2 (< $3)"
+    else
+        echo "  FAIL $1 = $2 (bound $3)"
+        fail=1
+    fi
+}
+
+# From a umppmFoam log: the largest per-cell continuity error after the
+# correction over all steps ("... max = X"), and the number of particles
+# that left the domain.
+log_max_continuity() {
+    grep -o 'max = [0-9.e+-]*' "$1" | awk '{ if ($3 > m) m = $3 } END { print m + 0 }'
+}
+log_particles_left() {
+    grep -o 'left the domain [0-9]*' "$1" | awk '{ s += $4 } END { print s + 0 }'
+}

@@ -22,15 +22,6 @@ ex=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam
 [ -d "$ex/cavity/cavity" ] || { echo "FAIL: $ex missing (package openfoam-examples)"; exit 1; }
 work=$(mktemp -d "${TMPDIR:-/tmp}/umppm-icotut.XXXXXX")
 fail=0
-check() { # check NAME VALUE LOW HIGH
-    if awk -v a="$2" -v l="$3" -v h="$4" 'BEGIN { exit !(a + 0 == a && a >= l && a <= h) }'; then
-        echo "  ok   $1 = $2 (in [$3, $4])"
-    else
-        echo "  FAIL $1 = $2 (expected [$3, $4])"
-        fail=1
-    fi
-}
-contmax() { grep -o 'max = [0-9.e+-]*' "$1" | awk '{ if ($3 > m) m = $3 } END { print m + 0 }'; }
 
 c=$work/cavity
 cp -r "$ex/cavity/cavity" "$c"
@@ -40,11 +31,11 @@ if "$UMPPMFOAM" -case "$c" > "$c/log.umppmFoam" 2>&1; then
         [ -f "$c/$t/U" ] && [ -f "$c/$t/lagrangian/umppmCloud/positions" ] ||
             { echo "  FAIL cavity: $t/U or its cloud missing"; fail=1; }
     done
-    check "cavity: max continuity error" "$(contmax "$c/log.umppmFoam")" 0 1e-12
+    check_range "cavity: max continuity error" "$(log_max_continuity "$c/log.umppmFoam")" 0 1e-12
     mkdir -p "$c/ico" && cp -r "$ex/cavity/cavity/0" "$c/constant" "$c/system" "$c/ico/"
     run_in "$c/ico" icoFoam icoFoam || fail=1
     rel=$("$TOOLDIR/foamCompare" "$c" 0.5 "$c/ico" 0.5 U | awk '$1 == "U" { print $4 }')
-    check "cavity: U vs icoFoam, relative L2" "$rel" 0 0.15
+    check_range "cavity: U vs icoFoam, relative L2" "$rel" 0 0.15
 else
     echo "  FAIL cavity: umppmFoam failed"; tail -3 "$c/log.umppmFoam"; fail=1
 fi
@@ -55,13 +46,12 @@ gzip -dc "$e/elbow.msh.gz" > "$e/elbow.msh"
 run_in "$e" fluentMeshToFoam fluentMeshToFoam elbow.msh
 if "$UMPPMFOAM" -case "$e" > "$e/log.umppmFoam" 2>&1; then
     [ -f "$e/10/U" ] || { echo "  FAIL elbow: 10/U missing"; fail=1; }
-    check "elbow: max continuity error" "$(contmax "$e/log.umppmFoam")" 0 1e-12
-    left=$(grep -o 'left the domain [0-9]*' "$e/log.umppmFoam" | awk '{ s += $4 } END { print s + 0 }')
-    check "elbow: particles that left through the outlet" "$left" 1 1e9
+    check_range "elbow: max continuity error" "$(log_max_continuity "$e/log.umppmFoam")" 0 1e-12
+    check_range "elbow: particles that left through the outlet" "$(log_particles_left "$e/log.umppmFoam")" 1 1e9
     np=$(grep -o '^Particles: [0-9]*' "$e/log.umppmFoam" | awk '{ if (!lo || $2 < lo) lo = $2; if ($2 > hi) hi = $2 }
         END { print lo, hi }')
-    check "elbow: fewest particles" "${np% *}" 826 1010
-    check "elbow: most particles" "${np#* }" 826 1010
+    check_range "elbow: fewest particles" "${np% *}" 826 1010
+    check_range "elbow: most particles" "${np#* }" 826 1010
 else
     echo "  FAIL elbow: umppmFoam failed"; tail -3 "$e/log.umppmFoam"; fail=1
 fi

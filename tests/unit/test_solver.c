@@ -124,15 +124,7 @@ static void test_rest(void **state)
 static pmesh *couette_pmesh(tm_kind kind, int n)
 {
     pmesh *pm = tm_pmesh(kind, n, 0, 0);
-    const char *nb[] = {NULL, "left", NULL, "right"};
-    for (int k = 1; k < 4; k += 2) {
-        pmesh_patch *pp = &pm->patch[k];
-        free(pp->type);
-        pp->type = ump_strdup("cyclic");
-        pp->kind = PMESH_CYCLIC;
-        pp->neighbour_patch = ump_strdup(nb[k]);
-        pp->nbr = pmesh_patch_index(pm, nb[k]);
-    }
+    tm_make_cyclic(pm, 1, 3);
     return pm;
 }
 

@@ -36,6 +36,21 @@ static inline void tm_map(double amp, double x, double y, double *X, double *Y)
     *Y = y + amp * sin(2 * UMP_PI * x) * sin(4 * UMP_PI * y) * 0.5;
 }
 
+/* Turn patches a and b of pm into a cyclic pair (no transform entry, as
+ * "transform unknown": mesh_build finds the separation from the faces). */
+static inline void tm_make_cyclic(pmesh *pm, int a, int b)
+{
+    int ends[2] = {a, b};
+    for (int k = 0; k < 2; k++) {
+        pmesh_patch *pp = &pm->patch[ends[k]];
+        free(pp->type);
+        pp->type = ump_strdup("cyclic");
+        pp->kind = PMESH_CYCLIC;
+        pp->neighbour_patch = ump_strdup(pm->patch[ends[1 - k]].name);
+        pp->nbr = ends[1 - k];
+    }
+}
+
 /* One-cell-thick polyMesh of the unit square: n x n squares split as kind
  * says, vertices moved by tm_map(amp); cyclic turns left/right and
  * bottom/top into cyclic pairs. Types: bottom/top "wall", left/right "patch". */
@@ -77,15 +92,8 @@ static inline pmesh *tm_pmesh(tm_kind kind, int n, double amp, int cyclic)
     free(off);
     free(pv);
     if (cyclic) {
-        const char *nb[] = {"top", "left", "bottom", "right"};
-        for (int p = 0; p < 4; p++) {
-            pmesh_patch *pp = &pm->patch[p];
-            free(pp->type);
-            pp->type = ump_strdup("cyclic");
-            pp->kind = PMESH_CYCLIC;
-            pp->neighbour_patch = ump_strdup(nb[p]);
-            pp->nbr = pmesh_patch_index(pm, nb[p]);
-        }
+        tm_make_cyclic(pm, 0, 2);
+        tm_make_cyclic(pm, 1, 3);
     }
     return pm;
 }
