@@ -338,7 +338,7 @@ static ump_status get_choice(const foam_dict *d, const char *key, const char *df
 ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err)
 {
     static const char *const variants[] = {"UMPPM", "UMPPMstar", "UMPPM*"};
-    static const char *const laps[] = {"CPM", "MPS", "IPS"};
+    static const char *const laps[] = {"CPM", "MPS", "IPS", "PS"};
     static const char *const ppes[] = {"auto", "UMFPACK", "KLU", "CHOLMOD"};
     static const char *const pcs[] = {"ILU0", "Jacobi", "none"};
     char path[4096], var[16];
@@ -357,7 +357,7 @@ ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err)
     ump_status rc;
     if ((rc = get_choice(d, "variant", "UMPPMstar", variants, 3, var, sizeof var, err)) != UMP_OK ||
         (rc = foam_get_scalar_or(d, "alpha", 0.09, &u->alpha, err)) != UMP_OK ||
-        (rc = get_choice(d, "laplacian", "CPM", laps, 3, u->laplacian, sizeof u->laplacian, err)) != UMP_OK ||
+        (rc = get_choice(d, "laplacian", "CPM", laps, 4, u->laplacian, sizeof u->laplacian, err)) != UMP_OK ||
         (rc = get_choice(d, "ppeSolver", "auto", ppes, 4, u->ppe_solver, sizeof u->ppe_solver, err)) != UMP_OK ||
         (rc = get_choice(pd, "preconditioner", "ILU0", pcs, 3, u->pred_pc, sizeof u->pred_pc, err)) != UMP_OK ||
         (rc = foam_get_scalar_or(pd, "tolerance", 1e-12, &u->pred_tol, err)) != UMP_OK ||

@@ -1,30 +1,42 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
- * laplacian.c -- Laplacian models on scattered particles, Section 3.2.1 of
- * seed 000 (Ng, Sheu & Hwang 2016).
+ * laplacian.c -- Laplacian models on scattered particles in 1-3 D: Section
+ * 3.2.1 of seed 000 (Ng, Sheu & Hwang 2016) and seed 001 (Hwang, Ng &
+ * Sheu 2016).
  *
  * Every model returns the implicit row lap(phi)_i = sum_j a_j (phi_j - phi_i)
- * (Eq. 14 is solved implicitly), so the explicit value and the matrix row
- * come from the same numbers.
+ * (Eq. 14 of seed 000 is solved implicitly), so the explicit value and the
+ * matrix row come from the same numbers.
  *
- * CPM (Koh et al.; Eqs. 16-17). Taylor expansion to second order,
- *   phi_j - phi_i ~ p_j . D,  p_j = [h, k, h^2/2, hk, k^2/2],
- *   D = [phi_x, phi_y, phi_xx, phi_xy, phi_yy],
- * fitted by weighted least squares with weights w_j^2, w_j = 1/r_j^3:
+ * CPM (Koh et al.; seed 000 Eqs. 16-17). Taylor expansion to second order,
+ *   phi_j - phi_i ~ p_j . D,  p_j = [x_d ..., x_d^2/2 or x_d x_e ...],
+ * (2-D: p_j = [h, k, h^2/2, hk, k^2/2], D = [phi_x, phi_y, phi_xx, phi_xy,
+ * phi_yy]) fitted by weighted least squares with weights w_j^2, w_j = 1/r^3:
  *   D = M^{-1} sum_j w_j^2 p_j (phi_j - phi_i),  M = sum_j w_j^2 p_j p_j^T,
- * and lap = D_3 + D_5, hence a_j = w_j^2 (row 3 + row 5 of M^{-1}) . p_j.
+ * and lap = sum of the x_d^2/2 components of D, hence
+ * a_j = w_j^2 (sum of those rows of M^{-1}) . p_j.
  * Exact for quadratic fields on any cloud where M is non-singular.
- * Conditioning: h, k are divided by a local length L (the largest neighbour
- * distance). With hat quantities H = h/L, K = k/L, p_hat = D_L p,
+ * Conditioning: offsets are divided by a local length L (the largest
+ * neighbour distance). With hat quantities X = x/L, p_hat = D_L p,
  * w_hat = L^3 w, one finds M_hat = L^6 D_L M D_L and a_hat_j = L^2 a_j, so
  * a_j = a_hat_j / L^2. M_hat is then equilibrated (spd_small.h) and its
  * condition number decides singularity.
  *
- * MPS (Koshizuka; Eq. 15), d = 2:
- *   a_j = 2d w_j / sum_j w_j r_j^2,  w = r_e/r - 1 for r < r_e, else 0.
- * Exact for quadratics on symmetric lattices only: on an irregular cloud the
- * first moment sum_j w_j h_j does not vanish, so a linear field gives an
- * O(1/l0) error and the scheme is inconsistent (the paper's motivation for
- * CPM; Ng et al. [27], Souto-Iglesias et al. [43]).
+ * Kernel models, w = max(r_e/r - 1, 0) (seed 001 Eq. 3), d = dimension:
+ *   MPS (Koshizuka; seed 000 Eq. 15): a_j = 2d w_j / sum_j w_j r_j^2.
+ *   PS  (Zhang; seed 001 Eq. 2):      a_j = 2d (w_j / r_j^2) / Omega_0,
+ *       Omega_0 = sum_j w_j (Eq. 5 with p = q = r = 0).
+ * Both are exact for quadratics on symmetric lattices only. On an irregular
+ * cloud the first moment Omega_2^(1,0) = sum_j w_j h_j / r_j^2 does not
+ * vanish, so PS adds the artificial convection u_N phi_x (Eqs. 10, 13) of
+ * size O(1/l0): the error grows as the cloud is refined.
+ *   IPS (seed 001 Eq. 15): subtract that term with a gradient that is exact
+ *       for linear fields, from G <grad phi> = Phi_2^(1) (Eq. 18; 2-D Eq. 19,
+ *       3-D Eq. 27), G_de = sum_j w_j x_d x_e / r_j^2:
+ *   lap = 2d/Omega_0 [Phi_2^(0) - Omega_2^(1) . G^{-1} Phi_2^(1)]  (Eq. 20,
+ *       1-D Eq. 24, 3-D Eq. 26), i.e. with c = G^{-1} Omega_2^(1),
+ *   a_j = 2d (w_j / r_j^2) (1 - c . x_j) / Omega_0.
+ * IPS is exact for linear fields; for quadratics it leaves the effective
+ * diffusivity tau of Eq. (22) instead of the identity.
  */
 #include "umppm/laplacian.h"
 
@@ -38,112 +50,238 @@
  * infinite). They get a_j = 0. */
 #define CPM_COINCIDENT 1e-12
 
-static ump_status cpm_coeffs(const double *h, const double *k, int n, double *a, ump_err *err)
+/* Second-order Taylor basis in dim dimensions: the dim linear terms, then
+ * for d <= e: x_d^2/2 (d == e) or x_d x_e. Its size; the positions of the
+ * x_d^2/2 terms go to diag[dim] when diag is not NULL. */
+static int taylor_basis(int dim, const double *x, double *p, int *diag)
+{
+    int m = 0;
+    for (int d = 0; d < dim; d++)
+        p[m++] = x[d];
+    for (int d = 0; d < dim; d++)
+        for (int e = d; e < dim; e++) {
+            if (d == e && diag)
+                diag[d] = m;
+            p[m++] = d == e ? 0.5 * x[d] * x[d] : x[d] * x[e];
+        }
+    return m;
+}
+
+static double dist2(int dim, const double *const *off, int j)
+{
+    double r2 = 0;
+    for (int d = 0; d < dim; d++)
+        r2 += off[d][j] * off[d][j];
+    return r2;
+}
+
+static ump_status cpm_coeffs(int dim, const double *const *off, int n, double *a, ump_err *err)
 {
     double r2max = 0;
     for (int j = 0; j < n; j++)
-        r2max = fmax(r2max, h[j] * h[j] + k[j] * k[j]);
+        r2max = fmax(r2max, dist2(dim, off, j));
     if (!(r2max > 0) || !isfinite(r2max))
         return UMP_FAIL(err, UMP_ERR_SINGULAR,
                         "CPM Laplacian: %d neighbours, none at a finite non-zero distance", n);
     double L = sqrt(r2max);
     double rmin2 = CPM_COINCIDENT * CPM_COINCIDENT;
+    int need = dim + dim * (dim + 1) / 2, diag[LAP_MAX_DIM];
 
     /* CPM moment matrix, Eq. 17: M = sum_j w_j^2 p_j p_j^T (hat units). */
     double m[SPD_MAX][SPD_MAX] = {{0}};
     int nused = 0;
     for (int j = 0; j < n; j++) {
-        double H = h[j] / L, K = k[j] / L, r2 = H * H + K * K;
+        double X[LAP_MAX_DIM], p[SPD_MAX], r2 = 0;
+        for (int d = 0; d < dim; d++) {
+            X[d] = off[d][j] / L;
+            r2 += X[d] * X[d];
+        }
         if (r2 < rmin2)
             continue;
         double w2 = 1 / (r2 * r2 * r2); /* w_j^2 = 1/r^6 */
-        double p[5] = {H, K, 0.5 * H * H, H * K, 0.5 * K * K};
-        for (int r = 0; r < 5; r++) {
+        taylor_basis(dim, X, p, NULL);
+        for (int r = 0; r < need; r++) {
             double wp = w2 * p[r];
-            for (int c = r; c < 5; c++)
+            for (int c = r; c < need; c++)
                 m[r][c] += wp * p[c];
         }
         nused++;
     }
-    if (nused < 5)
+    if (nused < need)
         return UMP_FAIL(err, UMP_ERR_SINGULAR,
-                        "CPM Laplacian: %d distinct neighbours, at least 5 needed", nused);
+                        "CPM Laplacian: %d distinct neighbours, at least %d needed in %d-D", nused,
+                        need, dim);
     spd_small f;
-    double rc = spd_factor_invert(&f, 5, m);
+    double rc = spd_factor_invert(&f, need, m);
     if (rc < LAP_RCOND_MIN)
         return UMP_FAIL(err, UMP_ERR_SINGULAR,
                         "CPM Laplacian: moment matrix singular (rcond %.3g, %d neighbours "
-                        "not spread in 2-D)", rc, nused);
+                        "not spread in %d-D)", rc, nused, dim);
 
-    /* q = M^{-1} (e_3 + e_5) = (row 3 + row 5 of M^{-1})^T, Eq. 16. */
-    double q3[5], q5[5], q[5];
-    spd_inv_column(&f, 2, q3);
-    spd_inv_column(&f, 4, q5);
-    for (int r = 0; r < 5; r++)
-        q[r] = q3[r] + q5[r];
+    /* q = M^{-1} sum_d e_{x_d^2/2}: the rows of the second derivatives, Eq. 16. */
+    double q[SPD_MAX] = {0}, col[SPD_MAX], p[SPD_MAX];
+    taylor_basis(dim, (double[LAP_MAX_DIM]){0}, p, diag);
+    for (int d = 0; d < dim; d++) {
+        spd_inv_column(&f, diag[d], col);
+        for (int r = 0; r < need; r++)
+            q[r] += col[r];
+    }
     double il2 = 1 / r2max; /* a_j = a_hat_j / L^2 */
     for (int j = 0; j < n; j++) {
-        double H = h[j] / L, K = k[j] / L, r2 = H * H + K * K;
+        double X[LAP_MAX_DIM], r2 = 0;
+        for (int d = 0; d < dim; d++) {
+            X[d] = off[d][j] / L;
+            r2 += X[d] * X[d];
+        }
         if (r2 < rmin2) {
             a[j] = 0;
             continue;
         }
-        double w2 = 1 / (r2 * r2 * r2);
-        double s = q[0] * H + q[1] * K + q[2] * 0.5 * H * H + q[3] * H * K + q[4] * 0.5 * K * K;
+        double w2 = 1 / (r2 * r2 * r2), s = 0;
+        taylor_basis(dim, X, p, NULL);
+        for (int r = 0; r < need; r++)
+            s += q[r] * p[r];
         a[j] = w2 * s * il2;
     }
     return UMP_OK;
 }
 
-static ump_status mps_coeffs(const lap_params *p, const double *h, const double *k, int n,
-                             double l0, double *a, ump_err *err)
+/* The kernel of MPS, PS and IPS, seed 001 Eq. 3: w = max(r_e/r - 1, 0),
+ * and 0 on the particle itself. */
+static double kernel(double r, double re)
 {
-    double ref = p->re_factor == 0 ? LAP_RE_FACTOR_DEFAULT : p->re_factor;
+    return (r > 0 && r < re) ? re / r - 1 : 0;
+}
+
+static ump_status kernel_coeffs(const lap_params *p, int dim, const double *const *off, int n,
+                                double l0, double *a, ump_err *err)
+{
+    const char *name = lap_name(p->model);
+    double ref = lap_re_factor(p);
     UMP_CHECK(l0 > 0 && isfinite(l0), err, UMP_ERR_INPUT,
-              "MPS Laplacian: particle spacing l0 = %g, expected > 0", l0);
+              "%s Laplacian: particle spacing l0 = %g, expected > 0", name, l0);
     UMP_CHECK(ref > 0 && isfinite(ref), err, UMP_ERR_INPUT,
-              "MPS Laplacian: re_factor = %g, expected > 0", ref);
-    double re = ref * l0;
-    /* Eq. 15: lambda-like normalisation sum_j w_j r_j^2; kernel w = r_e/r - 1. */
-    double den = 0;
+              "%s Laplacian: re_factor = %g, expected > 0", name, ref);
+    double re = ref * l0, den = 0;
+    /* Omega sums of seed 001 Eq. 5 (IPS): g = Omega_2^(1), G = Omega_2^(2). */
+    double g[LAP_MAX_DIM] = {0}, G[SPD_MAX][SPD_MAX] = {{0}};
     for (int j = 0; j < n; j++) {
-        double r = sqrt(h[j] * h[j] + k[j] * k[j]);
-        double w = (r > 0 && r < re) ? re / r - 1 : 0;
-        a[j] = w;
-        den += w * r * r;
+        double r2 = dist2(dim, off, j), r = sqrt(r2), w = kernel(r, re);
+        switch (p->model) {
+        case LAP_MPS: /* seed 000 Eq. 15: weights w, normalised by sum w r^2 */
+            a[j] = w;
+            den += w * r2;
+            break;
+        default: /* PS (seed 001 Eq. 2) and IPS: weights w / r^2, normalised by Omega_0 */
+            a[j] = w > 0 ? w / r2 : 0;
+            den += w;
+            for (int d = 0; d < dim && p->model == LAP_IPS; d++) {
+                g[d] += off[d][j] * a[j];
+                for (int e = d; e < dim; e++)
+                    G[d][e] += off[d][j] * off[e][j] * a[j];
+            }
+            break;
+        }
     }
     if (!(den > 0) || !isfinite(den))
-        return UMP_FAIL(err, UMP_ERR_SINGULAR,
-                        "MPS Laplacian: no neighbour within r_e = %g (of %d)", re, n);
-    double c = 2.0 * 2 / den; /* 2d / sum_j w_j r_j^2, d = 2 */
-    for (int j = 0; j < n; j++)
-        a[j] *= c;
+        return UMP_FAIL(err, UMP_ERR_SINGULAR, "%s Laplacian: no neighbour within r_e = %g (of %d)",
+                        name, re, n);
+    double c[LAP_MAX_DIM] = {0};
+    if (p->model == LAP_IPS) {
+        /* Eq. 18/27: G <grad phi> = Phi_2^(1); c = G^{-1} Omega_2^(1) (G symmetric). */
+        spd_small f;
+        double rc = spd_factor_invert(&f, dim, G);
+        if (rc < LAP_RCOND_MIN)
+            return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                            "IPS Laplacian: gradient matrix singular (rcond %.3g, neighbours "
+                            "within r_e = %g not spread in %d-D)", rc, re, dim);
+        for (int d = 0; d < dim; d++) {
+            double col[SPD_MAX];
+            spd_inv_column(&f, d, col);
+            for (int e = 0; e < dim; e++)
+                c[e] += col[e] * g[d];
+        }
+    }
+    double s = 2.0 * dim / den; /* 2d / sum_j w_j r_j^2 (MPS) or 2d / Omega_0 (PS, IPS) */
+    for (int j = 0; j < n; j++) {
+        double corr = 1;
+        for (int d = 0; d < dim && p->model == LAP_IPS; d++)
+            corr -= c[d] * off[d][j]; /* Eq. 20: minus the artificial convection */
+        a[j] *= s * corr;
+    }
     return UMP_OK;
+}
+
+ump_status lap_coeffs_d(const lap_params *p, int dim, const double *const *off, int n, double l0,
+                        double *a, ump_err *err)
+{
+    UMP_CHECK(p && dim >= 1 && dim <= LAP_MAX_DIM && n >= 0, err, UMP_ERR_INPUT,
+              "Laplacian: invalid arguments (dim = %d, n = %d)", dim, n);
+    for (int d = 0; d < dim && n > 0; d++)
+        UMP_CHECK(off && off[d] && a, err, UMP_ERR_INPUT, "Laplacian: offsets or coefficients missing");
+    switch (p->model) {
+    case LAP_CPM:
+        return cpm_coeffs(dim, off, n, a, err);
+    case LAP_MPS:
+    case LAP_PS:
+    case LAP_IPS:
+        return kernel_coeffs(p, dim, off, n, l0, a, err);
+    }
+    return UMP_FAIL(err, UMP_ERR_INPUT, "Laplacian: unknown model %d", (int)p->model);
 }
 
 ump_status lap_coeffs(const lap_params *p, const double *h, const double *k, int n, double l0,
                       double *a, ump_err *err)
 {
-    UMP_CHECK(p && n >= 0 && (n == 0 || (h && k && a)), err, UMP_ERR_INPUT,
-              "Laplacian: invalid arguments (n = %d)", n);
-    switch (p->model) {
-    case LAP_CPM:
-        return cpm_coeffs(h, k, n, a, err);
-    case LAP_MPS:
-        return mps_coeffs(p, h, k, n, l0, a, err);
-    case LAP_IPS:
-        return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                        "Laplacian IPS (seed 001 Eq. 20) is not implemented yet");
-    }
-    return UMP_FAIL(err, UMP_ERR_INPUT, "Laplacian: unknown model %d", (int)p->model);
+    const double *off[2] = {h, k};
+    return lap_coeffs_d(p, 2, off, n, l0, a, err);
 }
 
-static const char *const NAMES[] = {"CPM", "MPS", "IPS"};
+void lap_moments(int dim, const double *const *off, int n, const double *a, double first[3],
+                 double second[6])
+{
+    /* symmTensor slot of (d, e), d <= e: xx xy xz yy yz zz */
+    static const int slot[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+    for (int d = 0; d < 3; d++)
+        first[d] = 0;
+    for (int s = 0; s < 6; s++)
+        second[s] = 0;
+    for (int j = 0; j < n; j++)
+        for (int d = 0; d < dim; d++) {
+            first[d] += a[j] * off[d][j];
+            for (int e = d; e < dim; e++)
+                second[slot[d][e]] += 0.5 * a[j] * off[d][j] * off[e][j];
+        }
+}
+
+ump_status lap_quality_d(double re_factor, int dim, const double *const *off, int n, double l0,
+                         double *work, lap_quality *q, ump_err *err)
+{
+    double unused[6];
+    lap_params ps = {LAP_PS, re_factor}, ips = {LAP_IPS, re_factor};
+    /* Eq. 14: u_N = <lap x>_PS */
+    UMP_CALL(lap_coeffs_d(&ps, dim, off, n, l0, work, err));
+    lap_moments(dim, off, n, work, q->uN, unused);
+    /* Eq. 23: tau_de = <lap (x_d x_e / 2)>_IPS */
+    double first[3];
+    UMP_CALL(lap_coeffs_d(&ips, dim, off, n, l0, work, err));
+    lap_moments(dim, off, n, work, first, q->tau);
+    return UMP_OK;
+}
+
+double lap_re_factor(const lap_params *p)
+{
+    if (p->re_factor != 0)
+        return p->re_factor;
+    return p->model == LAP_MPS ? LAP_RE_FACTOR_DEFAULT : LAP_RE_FACTOR_PS_DEFAULT;
+}
+
+static const char *const NAMES[] = {"CPM", "MPS", "IPS", "PS"};
 
 const char *lap_name(lap_model m)
 {
     int i = (int)m;
-    return (i >= 0 && i <= (int)LAP_IPS) ? NAMES[i] : "unknown";
+    return (i >= 0 && i < (int)(sizeof NAMES / sizeof NAMES[0])) ? NAMES[i] : "unknown";
 }
 
 int lap_parse(const char *word)

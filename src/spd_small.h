@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * spd_small.h -- internal: dense symmetric positive definite solves of size
- * n <= SPD_MAX (the 6x6 MLS normal matrix, the 5x5 CPM moment matrix).
+ * n <= SPD_MAX (the 6x6 MLS normal matrix, the CPM moment matrices: 2x2,
+ * 5x5, 9x9 in 1-, 2-, 3-D; the d x d IPS gradient matrices).
  *
  * These run once per particle or face per time step, so they use fixed-size
  * stack arrays and never allocate. The matrix is first equilibrated
@@ -9,14 +10,14 @@
  * condition number does, and the one of A_hat is the meaningful one (it is
  * within a factor n of the best diagonal scaling). The reciprocal 1-norm
  * condition number of A_hat is computed exactly from the full inverse, which
- * for n <= 6 costs a few hundred flops -- cheaper than being wrong about it.
+ * for n <= 9 costs under a thousand flops -- cheaper than being wrong about it.
  */
 #ifndef UMPPM_SPD_SMALL_H
 #define UMPPM_SPD_SMALL_H
 
 #include <math.h>
 
-#define SPD_MAX 6
+#define SPD_MAX 9
 
 typedef struct spd_small {
     int n;                       /* order, 1..SPD_MAX */

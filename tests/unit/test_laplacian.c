@@ -389,12 +389,14 @@ static void test_names(void **state)
     double hh[8] = {0}, kk[8] = {0}, a[8];
     ump_err err;
     lap_params ips = {LAP_IPS, 0};
-    assert_int_equal(lap_coeffs(&ips, hh, kk, 8, 0.1, a, &err), UMP_ERR_UNSUPPORTED);
+    /* all neighbours on the particle: nothing within r_e */
+    assert_int_equal(lap_coeffs(&ips, hh, kk, 8, 0.1, a, &err), UMP_ERR_SINGULAR);
     assert_string_equal(lap_name(LAP_CPM), "CPM");
     assert_string_equal(lap_name(LAP_MPS), "MPS");
     assert_string_equal(lap_name(LAP_IPS), "IPS");
+    assert_string_equal(lap_name(LAP_PS), "PS");
     assert_string_equal(lap_name((lap_model)17), "unknown");
-    for (int m = LAP_CPM; m <= LAP_IPS; m++)
+    for (int m = LAP_CPM; m <= LAP_PS; m++)
         assert_int_equal(lap_parse(lap_name((lap_model)m)), m);
     assert_int_equal(lap_parse("cpm"), -1);
     assert_int_equal(lap_parse(""), -1);
