@@ -66,6 +66,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->variant = a->um.variant_star ? PART_UMPPM_STAR : PART_UMPPM;
     s->alpha = a->um.alpha;
     s->lap.model = (lap_model)lap_parse(a->um.laplacian);
+    s->lap.re_factor = a->um.re_factor;
     s->ppe_solver = strcmp(a->um.ppe_solver, "UMFPACK") == 0 ? LSOLVE_UMFPACK
                     : strcmp(a->um.ppe_solver, "KLU") == 0   ? LSOLVE_KLU
                     : strcmp(a->um.ppe_solver, "CHOLMOD") == 0 ? LSOLVE_CHOLMOD : LSOLVE_AUTO;
@@ -130,6 +131,48 @@ static void fill_fields(app *a)
     }
 }
 
+/* writeQuality: the particle fields uN (vector, seed 001 Eq. 13) and tau
+ * (symmTensor, Eq. 22) in the mesh's 3-D axes. */
+static ump_status write_quality(app *a, const char *dir, const char *tname, ump_err *err)
+{
+    const part_set *P = sol_particles(a->S);
+    size_t n = P->n, nfail = 0;
+    double *uN = ump_alloc_array(2 * n + 1, sizeof *uN), *tau = ump_alloc_array(3 * n + 1, sizeof *tau);
+    double *u3 = ump_alloc_array(3 * n + 1, sizeof *u3), *t6 = ump_alloc_array(6 * n + 1, sizeof *t6);
+    ump_status rc = UMP_OK;
+    if (!uN || !tau || !u3 || !t6) {
+        rc = UMP_FAIL(err, UMP_ERR_NOMEM, "writing particle quality: out of memory");
+        goto done;
+    }
+    if ((rc = sol_particle_quality(a->S, uN, tau, &nfail, err)) != UMP_OK)
+        goto done;
+    /* symmTensor slot of the 3-D axes pair (d, e) */
+    static const int slot[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+    int X = a->m->ax[0], Y = a->m->ax[1];
+    for (size_t i = 0; i < n; i++) {
+        double *u = u3 + 3 * i, *T = t6 + 6 * i;
+        memset(u, 0, 3 * sizeof *u);
+        memset(T, 0, 6 * sizeof *T);
+        u[X] = uN[2 * i];
+        u[Y] = uN[2 * i + 1];
+        T[slot[X][X]] = tau[3 * i];
+        T[slot[X][Y]] = tau[3 * i + 1];
+        T[slot[Y][Y]] = tau[3 * i + 2];
+    }
+    if (nfail)
+        printf("writeQuality: %zu particles with a singular IPS matrix written as 0\n", nfail);
+    if ((rc = fio_write_cloud_field(dir, tname, a->um.cloud_name, "uN", 3, n, u3,
+                                    a->ctl.write_precision, err)) != UMP_OK)
+        goto done;
+    rc = fio_write_cloud_field(dir, tname, a->um.cloud_name, "tau", 6, n, t6, a->ctl.write_precision, err);
+done:
+    free(uN);
+    free(tau);
+    free(u3);
+    free(t6);
+    return rc;
+}
+
 static ump_status write_time(app *a, const rt_time *t, ump_err *err)
 {
     fio_timedir td;
@@ -153,6 +196,7 @@ static ump_status write_time(app *a, const rt_time *t, ump_err *err)
         (rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->p, &fmt, err)) != UMP_OK ||
         (rc = fio_write_cloud(td.tmp_dir, t->name, a->um.cloud_name, P->n, pos, vel, P->cell, P->id,
                               a->ctl.write_precision, err)) != UMP_OK ||
+        (a->um.write_quality && (rc = write_quality(a, td.tmp_dir, t->name, err)) != UMP_OK) ||
         (rc = fio_write_uniform_time(td.tmp_dir, t->name, t->value, t->name, t->index, t->delta_t,
                                      t->delta_t0, a->ctl.write_precision, a->ctl.time_format_fixed,
                                      err)) != UMP_OK ||
@@ -264,9 +308,13 @@ ump_status app_run(const char *case_dir, ump_err *err)
         goto done;
     if ((rc = settings(&a, &s, err)) != UMP_OK)
         goto done;
-    printf("UMPPM: variant %s, alpha %g, laplacian %s, PPE solver %s, predictor BiCGSTAB/%s "
-           "tolerance %g\n\n", a.um.variant_star ? "UMPPM*" : "UMPPM", a.um.alpha, a.um.laplacian,
-           a.um.ppe_solver, a.um.pred_pc, a.um.pred_tol);
+    printf("UMPPM: variant %s, alpha %g, laplacian %s", a.um.variant_star ? "UMPPM*" : "UMPPM",
+           a.um.alpha, a.um.laplacian);
+    if (strcmp(a.um.laplacian, "CPM") != 0)
+        printf(" (r_e = %g x spacing)", lap_re_factor(&(lap_params){(lap_model)lap_parse(a.um.laplacian),
+                                                                   a.um.re_factor}));
+    printf(", PPE solver %s, predictor BiCGSTAB/%s tolerance %g\n\n", a.um.ppe_solver, a.um.pred_pc,
+           a.um.pred_tol);
     double tb = wall_seconds();
     if ((rc = sol_create(a.m, &s, a.U, a.p, &a.S, err)) != UMP_OK ||
         (rc = restart_cloud(&a, tname, err)) != UMP_OK)

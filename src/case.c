@@ -358,6 +358,8 @@ ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err)
     if ((rc = get_choice(d, "variant", "UMPPMstar", variants, 3, var, sizeof var, err)) != UMP_OK ||
         (rc = foam_get_scalar_or(d, "alpha", 0.09, &u->alpha, err)) != UMP_OK ||
         (rc = get_choice(d, "laplacian", "CPM", laps, 4, u->laplacian, sizeof u->laplacian, err)) != UMP_OK ||
+        (rc = foam_get_scalar_or(d, "reFactor", 0, &u->re_factor, err)) != UMP_OK ||
+        (rc = foam_get_bool_or(d, "writeQuality", 0, &u->write_quality, err)) != UMP_OK ||
         (rc = get_choice(d, "ppeSolver", "auto", ppes, 4, u->ppe_solver, sizeof u->ppe_solver, err)) != UMP_OK ||
         (rc = get_choice(pd, "preconditioner", "ILU0", pcs, 3, u->pred_pc, sizeof u->pred_pc, err)) != UMP_OK ||
         (rc = foam_get_scalar_or(pd, "tolerance", 1e-12, &u->pred_tol, err)) != UMP_OK ||
@@ -370,6 +372,9 @@ ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err)
     if (!(u->alpha > 0 && u->alpha < 1) || !(u->pred_tol > 0) || maxit < 1)
         rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: UMPPM alpha must be in (0,1), predictorSolver tolerance > 0 "
                       "and maxIter >= 1", f->path);
+    else if (u->re_factor != 0 && !(u->re_factor >= 1 && u->re_factor <= 4))
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: UMPPM reFactor %g: expected 0 (the model's default) or a "
+                      "value in [1, 4] (r_e = reFactor x particle spacing)", f->path, u->re_factor);
 done:
     foam_file_free(&f);
     return rc;

@@ -5,6 +5,8 @@
  *   <time>/lagrangian/<cloud>/U           vectorField
  *   <time>/lagrangian/<cloud>/origId      labelField (persistent particle id)
  *   <time>/lagrangian/<cloud>/origProcId  labelField (0)
+ *   <time>/lagrangian/<cloud>/<name>      any further scalar, vector or
+ *                                         symmTensor particle field
  *   <time>/uniform/lagrangian/<cloud>/cloudProperties  geometry positions;
  * Reading accepts these files ascii or binary (positions records are
  * "(" 3 doubles + 1 label ")" in binary, 28 bytes for label=32).
@@ -35,6 +37,38 @@ static ump_status close_out(FILE *fp, const char *path, ump_err *err)
     return UMP_OK;
 }
 
+ump_status fio_write_cloud_field(const char *dir, const char *location, const char *cloud,
+                                 const char *name, int ncomp, size_t n, const double *v,
+                                 int precision, ump_err *err)
+{
+    const char *cls = ncomp == 1 ? "scalarField" : ncomp == 3 ? "vectorField"
+                      : ncomp == 6 ? "symmTensorField" : NULL;
+    UMP_CHECK(cls, err, UMP_ERR_INPUT, "cloud field %s: %d components, expected 1, 3 or 6", name, ncomp);
+    char cdir[4096], path[4400], loc[4200];
+    snprintf(cdir, sizeof cdir, "%s/lagrangian/%s", dir, cloud);
+    snprintf(loc, sizeof loc, "%s/lagrangian/%s", location, cloud);
+    UMP_CALL(fio_mkdir_p(cdir, err));
+    ump_status rc = UMP_OK;
+    FILE *fp = open_out(cdir, name, path, sizeof path, err, &rc);
+    if (!fp)
+        return rc;
+    fio_write_header(fp, cls, loc, name, 0);
+    fprintf(fp, "%zu\n(\n", n);
+    for (size_t i = 0; i < n; i++) {
+        const double *x = v + (size_t)ncomp * i;
+        if (ncomp == 1) {
+            fprintf(fp, "%.*g\n", precision, x[0]);
+            continue;
+        }
+        fputc('(', fp);
+        for (int c = 0; c < ncomp; c++)
+            fprintf(fp, c ? " %.*g" : "%.*g", precision, x[c]);
+        fputs(")\n", fp);
+    }
+    fprintf(fp, ")\n");
+    return close_out(fp, path, err);
+}
+
 ump_status fio_write_cloud(const char *dir, const char *location, const char *cloud, size_t n,
                            const double *pos, const double *vel, const ump_idx *cell,
                            const int64_t *id, int precision, ump_err *err)
@@ -59,14 +93,7 @@ ump_status fio_write_cloud(const char *dir, const char *location, const char *cl
     fprintf(fp, ")\n");
     UMP_CALL(close_out(fp, path, err));
 
-    if (!(fp = open_out(cdir, "U", path, sizeof path, err, &rc)))
-        return rc;
-    fio_write_header(fp, "vectorField", loc, "U", 0);
-    fprintf(fp, "%zu\n(\n", n);
-    for (size_t i = 0; i < n; i++)
-        fprintf(fp, "(%.*g %.*g %.*g)\n", pr, vel[3 * i], pr, vel[3 * i + 1], pr, vel[3 * i + 2]);
-    fprintf(fp, ")\n");
-    UMP_CALL(close_out(fp, path, err));
+    UMP_CALL(fio_write_cloud_field(dir, location, cloud, "U", 3, n, vel, precision, err));
 
     if (!(fp = open_out(cdir, "origId", path, sizeof path, err, &rc)))
         return rc;

@@ -81,7 +81,7 @@ void sol_default_settings(sol_settings *s)
     s->variant = PART_UMPPM_STAR;
     s->alpha = 0.09;
     s->lap.model = LAP_CPM;
-    s->lap.re_factor = 2.1;
+    s->lap.re_factor = 0; /* the model's default */
     s->ppe_solver = LSOLVE_AUTO;
     s->pred_pc = LSOLVE_PC_ILU0;
     s->pred_tol = 1e-12;
@@ -660,6 +660,40 @@ void sol_courant(const sol *S, double dt, double *mean, double *max)
 const double *sol_cell_u(const sol *S) { return S->uc; }
 const double *sol_cell_v(const sol *S) { return S->vc; }
 const double *sol_cell_p(const sol *S) { return S->p; }
+/* Seed 001 Eqs. 13 and 22 per fluid particle, over the predictor's
+ * neighbours (the same gather), r_e = re_factor * sqrt(cell area). */
+ump_status sol_particle_quality(sol *S, double *uN, double *tau, size_t *nfail, ump_err *err)
+{
+    part_set *P = S->P;
+    size_t bad = 0;
+    UMP_CALL(part_bins_build(&S->bins, S->m, P, err));
+    for (size_t i = 0; i < P->n; i++) {
+        size_t cnt;
+        ump_idx c = P->cell[i];
+        UMP_CALL(gather(S, c, P->x[i], P->y[i], i, &cnt, err));
+        for (size_t j = 0; j < cnt; j++) {
+            S->h[j] = S->nb[j].dx;
+            S->k[j] = S->nb[j].dy;
+        }
+        const double *off[2] = {S->h, S->k};
+        lap_quality q;
+        ump_err lerr;
+        if (lap_quality_d(S->set.lap.re_factor, 2, off, (int)cnt, sqrt(S->m->area[c]), S->a, &q,
+                          &lerr) != UMP_OK) {
+            memset(&q, 0, sizeof q);
+            bad++;
+        }
+        uN[2 * i] = q.uN[0];
+        uN[2 * i + 1] = q.uN[1];
+        tau[3 * i] = q.tau[0];
+        tau[3 * i + 1] = q.tau[1];
+        tau[3 * i + 2] = q.tau[3];
+    }
+    if (nfail)
+        *nfail = bad;
+    return UMP_OK;
+}
+
 const part_set *sol_particles(const sol *S) { return S->P; }
 
 void sol_face_values(const sol *S, ump_idx f, double *u, double *v, double *p)

@@ -51,14 +51,19 @@ typedef struct case_solution {
 } case_solution;
 
 /* The UMPPM sub-dictionary of system/fvSolution (all optional):
- *   UMPPM { variant UMPPMstar; alpha 0.09; laplacian CPM; ppeSolver auto;
+ *   UMPPM { variant UMPPMstar; alpha 0.09; laplacian CPM; reFactor 0;
+ *           writeQuality no; ppeSolver auto;
  *           predictorSolver { preconditioner ILU0; tolerance 1e-12; maxIter 500; }
  *           cloudName umppmCloud; }
+ * reFactor: r_e / particle spacing of MPS, PS, IPS (0: 2.1 MPS, 2 PS/IPS);
+ * writeQuality: also write the particle fields uN and tau (seed 001). 
  * variant: UMPPM (adaptive) or UMPPMstar (also written "UMPPM*" in quotes). */
 typedef struct case_umppm {
     int variant_star;            /* 1: UMPPM*, 0: UMPPM; default 1 */
     double alpha;                /* default 0.09, in (0, 1) */
-    char laplacian[16];          /* CPM (default), MPS, IPS */
+    char laplacian[16];          /* CPM (default), MPS, IPS, PS */
+    double re_factor;            /* default 0: the model's own */
+    int write_quality;           /* default 0 */
     char ppe_solver[16];         /* auto (default), UMFPACK, KLU, CHOLMOD */
     char pred_pc[16];            /* ILU0 (default), Jacobi, none */
     double pred_tol;             /* default 1e-12 */

@@ -102,6 +102,12 @@ void fio_write_footer(FILE *fp);
 ump_status fio_write_cloud(const char *dir, const char *location, const char *cloud, size_t n,
                            const double *pos, const double *vel, const ump_idx *cell,
                            const int64_t *id, int precision, ump_err *err);
+/* One more particle field of a cloud (same dir/location/cloud as
+ * fio_write_cloud): ncomp 1, 3 or 6 values per particle written as a
+ * scalarField, vectorField or symmTensorField (xx xy xz yy yz zz). */
+ump_status fio_write_cloud_field(const char *dir, const char *location, const char *cloud,
+                                 const char *name, int ncomp, size_t n, const double *v,
+                                 int precision, ump_err *err);
 /* Read a cloud written by fio_write_cloud (or by OpenFOAM as ascii or
  * binary positions + U): *n particles, *pos, *vel [3*n], *id [n] (origId,
  * or -1 when absent), *cell [n] (celli of positions, a hint: -1 allowed),

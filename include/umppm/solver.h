@@ -92,5 +92,12 @@ const double *sol_cell_p(const sol *S);
  * (f >= ninternal). */
 void sol_face_values(const sol *S, ump_idx f, double *u, double *v, double *p);
 const part_set *sol_particles(const sol *S);
+/* Particle-distribution quality of seed 001 for every fluid particle:
+ * uN [2n] the artificial velocity of PS (Eq. 13), tau [3n] the effective
+ * diffusivity of IPS (Eq. 22) as xx, xy, yy; both with r_e = re_factor
+ * (settings; 0: 2.0) times the particle's sqrt(cell area), over the
+ * neighbours the predictor uses. Particles whose IPS matrix is singular get
+ * zeros and are counted in *nfail. */
+ump_status sol_particle_quality(sol *S, double *uN, double *tau, size_t *nfail, ump_err *err);
 
 #endif

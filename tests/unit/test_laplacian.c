@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * test_laplacian.c -- particle Laplacians (lap_coeffs): CPM (Eqs. 16-17)
- * and MPS (Eq. 15) of seed 000.
+ * and MPS (Eq. 15) of seed 000, PS and IPS of seed 001.
  *
  * CPM: exact for quadratics on irregular 24-neighbour clouds, observed order
  * for a smooth field, singular clouds refused, and the implicit row checked
@@ -8,6 +8,10 @@
  * squares for all five derivatives by Gram-Schmidt QR, physical units).
  * MPS: exact for quadratics on a regular lattice with r_e = 2.1 l0, and
  * inconsistent on an irregular cloud: its error does not vanish as h -> 0.
+ * PS and IPS (seed 001): the 1-D closed forms (Eqs. 30, 32, 33) to
+ * round-off, IPS exact for linear and CPM for quadratic fields in 1-3 D,
+ * PS's artificial velocity growing as 1/l0, the quality indicators against
+ * Eqs. 13 and 22 written out, degenerate 3-D clouds refused.
  */
 #include "testutil.h"
 #include "umppm/laplacian.h"
@@ -383,6 +387,293 @@ static void test_mps_params(void **state)
     assert_true(a[0] == 0 && isfinite(a[1]) && a[1] > 0);
 }
 
+/* ---- seed 001: PS, IPS, and the d-dimensional operators ----------------- */
+
+static const lap_params PS = {LAP_PS, 2.0};
+static const lap_params IPS = {LAP_IPS, 2.0};
+
+/* A random cloud around the origin in dim dimensions: n neighbours at
+ * offsets within (0.3, 1.9) l0 in every direction of a jittered lattice
+ * window (so all lie inside r_e = 2 l0). */
+static int cloud_d(int dim, double l0, double jit, double *off[3])
+{
+    int n = 0;
+    for (int i = -2; i <= 2; i++)
+        for (int j = (dim > 1 ? -2 : 0); j <= (dim > 1 ? 2 : 0); j++)
+            for (int k = (dim > 2 ? -1 : 0); k <= (dim > 2 ? 1 : 0); k++) {
+                if (!i && !j && !k)
+                    continue;
+                int o[3] = {i, j, k};
+                double r2 = 0, x[3];
+                for (int d = 0; d < dim; d++) {
+                    x[d] = (o[d] + jit * rnd_in(-1, 1)) * l0;
+                    r2 += x[d] * x[d];
+                }
+                if (r2 >= 1.9 * 1.9 * l0 * l0 || r2 < 0.09 * l0 * l0)
+                    continue;
+                for (int d = 0; d < dim; d++)
+                    off[d][n] = x[d];
+                n++;
+            }
+    return n;
+}
+
+/* Seed 001 Eqs. 30a, 30b: PS and IPS of phi = a x + b x^2 on an irregular
+ * 1-D cloud, against the closed forms written with the Omega sums (Eq. 25b)
+ * computed here independently. */
+static void test_ps_ips_1d_closed_forms(void **state)
+{
+    (void)state;
+    rng_seed(21);
+    double h[NMAX], c[NMAX], phi[NMAX];
+    double worst = 0;
+    for (int t = 0; t < 200; t++) {
+        double l0 = pow(10, rnd_in(-3, 1)), re = 2 * l0;
+        int n = 0;
+        for (int j = -2; j <= 2; j++) /* neighbours at (j +- 0.45) l0, j != 0 */
+            if (j)
+                h[n++] = (j + 0.45 * rnd_in(-1, 1)) * l0;
+        double A = rnd_in(-2, 2) / l0, Bq = rnd_in(-2, 2) / (l0 * l0);
+        for (int j = 0; j < n; j++)
+            phi[j] = A * h[j] + Bq * h[j] * h[j];
+        double O0 = 0, O21 = 0, O23 = 0; /* Omega_0^(0), Omega_2^(1), Omega_2^(3) */
+        for (int j = 0; j < n; j++) {
+            double r = fabs(h[j]), w = r < re ? re / r - 1 : 0;
+            O0 += w;
+            O21 += w * h[j] / (r * r);
+            O23 += w * h[j] * h[j] * h[j] / (r * r);
+        }
+        const double *off[1] = {h};
+        ump_err err;
+        assert_int_equal(lap_coeffs_d(&PS, 1, off, n, l0, c, &err), UMP_OK);
+        double sc, ps = apply(c, phi, 0, n, &sc);
+        double e30a = 2 * A * O21 / O0 + 2 * Bq; /* Eq. 30a */
+        double rel = fabs(ps - e30a) / fmax(fabs(e30a), sc);
+        worst = fmax(worst, rel);
+        if (!(rel <= 1e-13))
+            fail_msg("PS 1-D: %.17g vs Eq. 30a %.17g", ps, e30a);
+        assert_int_equal(lap_coeffs_d(&IPS, 1, off, n, l0, c, &err), UMP_OK);
+        double ips = apply(c, phi, 0, n, &sc);
+        double e30b = 2 * Bq * (1 - O21 * O23 / (O0 * O0)); /* Eq. 30b */
+        rel = fabs(ips - e30b) / fmax(fabs(e30b), sc);
+        worst = fmax(worst, rel);
+        if (!(rel <= 1e-13))
+            fail_msg("IPS 1-D: %.17g vs Eq. 30b %.17g", ips, e30b);
+    }
+    print_message("Eqs. 30a/30b on 200 irregular 1-D clouds: worst rel. difference %.3g\n", worst);
+}
+
+/* Seed 001 Eqs. 31-33: the three-point problem, PS and IPS at x = 0 with
+ * neighbours at 1 and -1 + alpha (r_e = 2), against Eqs. 32a, 32b and the
+ * reality factor of IPS, Eq. 33b (exact in alpha, not only to O(alpha^3)). */
+static void test_three_point(void **state)
+{
+    (void)state;
+    const double stars[4] = {2.0, 0.5, -0.5, -2.0};
+    double worst = 0;
+    for (int s = 0; s < 4; s++)
+        for (int k = 0; k <= 18; k++) {
+            double al = 0.05 * k, ps = stars[s];
+            double h[2] = {1, -1 + al}, ph[2] = {1, ps}, a[2];
+            const double *off[1] = {h};
+            ump_err err;
+            double ex = 2 * (1 - al + ps) / ((1 - al) * (2 - al)); /* Eq. 31c */
+            double ws = (1 + al) / (1 - al);                        /* Eq. 32c */
+            double e32a = 2 * ((1 - al) * (1 - al) + ps * ws) / ((1 - al) * (1 - al) * (1 + ws));
+            double e32b = ex * (1 - (1 - al - ws) * (1 - (1 - al) * ws) /
+                                        ((1 - al) * (1 + ws) * (1 + ws)));
+            double e33b = 1 - 0.75 * al * al + 0.25 * al * al * al;
+            assert_int_equal(lap_coeffs_d(&PS, 1, off, 2, 1.0, a, &err), UMP_OK);
+            double vps = a[0] * ph[0] + a[1] * ph[1];
+            assert_int_equal(lap_coeffs_d(&IPS, 1, off, 2, 1.0, a, &err), UMP_OK);
+            double vips = a[0] * ph[0] + a[1] * ph[1];
+            double d1 = fabs(vps - e32a) / fmax(fabs(e32a), 1), d2 = fabs(vips - e32b) / fmax(fabs(e32b), 1);
+            double d3 = fabs(ex) > 1e-9 ? fabs(vips / ex - e33b) : 0;
+            worst = fmax(worst, fmax(d1, fmax(d2, d3)));
+            if (!(d1 <= 1e-13 && d2 <= 1e-13 && d3 <= 1e-12))
+                fail_msg("three-point alpha %g phi* %g: PS %.17g (32a %.17g) IPS %.17g (32b %.17g) "
+                         "reality %.17g (33b %.17g)", al, ps, vps, e32a, vips, e32b, vips / ex, e33b);
+        }
+    print_message("three-point problem, 76 cases: worst rel. difference to Eqs. 32a/32b/33b %.3g\n",
+                  worst);
+}
+
+/* IPS is exact for linear fields and CPM for quadratics in 1, 2 and 3-D;
+ * PS is not exact even for linear fields, and its error there is exactly
+ * u_N . grad phi with u_N growing as 1/l0 (Eqs. 10, 12-14). */
+static void test_consistency_by_dimension(void **state)
+{
+    (void)state;
+    rng_seed(22);
+    double buf[3][NMAX], a[NMAX], phi[NMAX];
+    double *off[3] = {buf[0], buf[1], buf[2]};
+    for (int dim = 1; dim <= 3; dim++) {
+        double wl = 0, wq = 0;
+        for (int t = 0; t < 200; t++) {
+            double l0 = pow(10, rnd_in(-3, 1));
+            int n = cloud_d(dim, l0, 0.3, off);
+            double g[3], H[3][3];
+            for (int d = 0; d < 3; d++) {
+                g[d] = rnd_in(-1, 1) / l0;
+                for (int e = 0; e < 3; e++)
+                    H[d][e] = rnd_in(-1, 1) / (l0 * l0);
+            }
+            ump_err err;
+            const double *co[3] = {off[0], off[1], off[2]};
+            /* linear field, IPS */
+            for (int j = 0; j < n; j++) {
+                phi[j] = 0;
+                for (int d = 0; d < dim; d++)
+                    phi[j] += g[d] * off[d][j];
+            }
+            if (lap_coeffs_d(&IPS, dim, co, n, l0, a, &err) != UMP_OK)
+                fail_msg("IPS %d-D: %s", dim, err.msg);
+            double sc, v = apply(a, phi, 0, n, &sc);
+            wl = fmax(wl, fabs(v) / sc);
+            if (!(fabs(v) <= 1e-12 * sc))
+                fail_msg("IPS %d-D linear field: %.3g (scale %.3g)", dim, v, sc);
+            /* PS on the same linear field: exactly first-moment . g */
+            assert_int_equal(lap_coeffs_d(&PS, dim, co, n, l0, a, &err), UMP_OK);
+            double first[3], second[6], u = 0;
+            lap_moments(dim, co, n, a, first, second);
+            for (int d = 0; d < dim; d++)
+                u += first[d] * g[d];
+            v = apply(a, phi, 0, n, &sc);
+            assert_true(fabs(v - u) <= 1e-12 * sc);
+            /* quadratic field (symmetric part of H), CPM */
+            for (int j = 0; j < n; j++) {
+                phi[j] = 0;
+                for (int d = 0; d < dim; d++) {
+                    phi[j] += g[d] * off[d][j];
+                    for (int e = 0; e < dim; e++)
+                        phi[j] += 0.5 * 0.5 * (H[d][e] + H[e][d]) * off[d][j] * off[e][j];
+                }
+            }
+            double lapx = 0;
+            for (int d = 0; d < dim; d++)
+                lapx += H[d][d];
+            if (lap_coeffs_d(&CPM, dim, co, n, l0, a, &err) != UMP_OK)
+                fail_msg("CPM %d-D: %s", dim, err.msg);
+            v = apply(a, phi, 0, n, &sc);
+            double rel = fabs(v - lapx) / fmax(fabs(lapx), sc);
+            wq = fmax(wq, rel);
+            if (!(rel <= 1e-10))
+                fail_msg("CPM %d-D quadratic: %.17g vs %.17g", dim, v, lapx);
+        }
+        print_message("%d-D: IPS on linear fields worst |lap|/scale %.3g, CPM on quadratics worst "
+                      "rel. error %.3g (200 clouds each)\n", dim, wl, wq);
+    }
+    /* u_N of PS scales as 1/l0 on a scaled copy of one cloud (O(1/delta), Eq. 12) */
+    rng_seed(23);
+    int n = cloud_d(2, 1.0, 0.3, off);
+    double base[3][NMAX];
+    for (int d = 0; d < 2; d++)
+        memcpy(base[d], off[d], (size_t)n * sizeof(double));
+    double u1 = 0;
+    for (int s = 0; s < 4; s++) {
+        double l0 = pow(0.5, s), first[3], second[6];
+        for (int d = 0; d < 2; d++)
+            for (int j = 0; j < n; j++)
+                off[d][j] = base[d][j] * l0;
+        const double *co[3] = {off[0], off[1], off[2]};
+        ump_err err;
+        assert_int_equal(lap_coeffs_d(&PS, 2, co, n, l0, a, &err), UMP_OK);
+        lap_moments(2, co, n, a, first, second);
+        double u = hypot(first[0], first[1]);
+        if (s == 0)
+            u1 = u;
+        assert_true(u1 > 0.05);
+        assert_true(fabs(u * l0 - u1) <= 1e-12 * u1);
+    }
+}
+
+/* The quality indicators against the sums of seed 001 written out:
+ * u_N = 4 Omega_2^(1,0) / Omega_0^(0,0) (Eq. 13) and tau of Eqs. 22a-c;
+ * on a regular lattice u_N = 0, tau = I and PS = IPS. */
+static void test_quality_closed_forms(void **state)
+{
+    (void)state;
+    rng_seed(24);
+    double buf[3][NMAX], a[NMAX], a2[NMAX], work[NMAX];
+    double *off[3] = {buf[0], buf[1], buf[2]};
+    for (int t = 0; t < 100; t++) {
+        double l0 = pow(10, rnd_in(-2, 1)), re = 2 * l0;
+        int n = cloud_d(2, l0, 0.4, off);
+        double O[4][4] = {{0}}; /* O[q][r] = Omega_2^(q,r), plus Omega_0^(0,0) */
+        double O0 = 0;
+        for (int j = 0; j < n; j++) {
+            double h = off[0][j], k = off[1][j], r2 = h * h + k * k, r = sqrt(r2);
+            double w = r < re ? re / r - 1 : 0;
+            O0 += w;
+            for (int q = 0; q <= 3; q++)
+                for (int r_ = 0; q + r_ <= 3; r_++)
+                    O[q][r_] += pow(h, q) * pow(k, r_) * w / r2;
+        }
+        double det = O[2][0] * O[0][2] - O[1][1] * O[1][1];
+        double cx = (O[1][0] * O[0][2] - O[0][1] * O[1][1]) / det;
+        double cy = (O[0][1] * O[2][0] - O[1][0] * O[1][1]) / det;
+        double txx = 2 / O0 * (O[2][0] - cx * O[3][0] - cy * O[2][1]); /* Eq. 22a */
+        double txy = 2 / O0 * (O[1][1] - cx * O[2][1] - cy * O[1][2]); /* Eq. 22b */
+        double tyy = 2 / O0 * (O[0][2] - cx * O[1][2] - cy * O[0][3]); /* Eq. 22c */
+        double uN = 4 * O[1][0] / O0, vN = 4 * O[0][1] / O0;            /* Eq. 13 */
+        const double *co[3] = {off[0], off[1], off[2]};
+        lap_quality q;
+        ump_err err;
+        assert_int_equal(lap_quality_d(2.0, 2, co, n, l0, work, &q, &err), UMP_OK);
+        double su = (fabs(uN) + fabs(vN)) + 1 / l0;
+        assert_true(fabs(q.uN[0] - uN) <= 1e-12 * su && fabs(q.uN[1] - vN) <= 1e-12 * su);
+        assert_true(fabs(q.tau[0] - txx) <= 1e-12 && fabs(q.tau[1] - txy) <= 1e-12 &&
+                    fabs(q.tau[3] - tyy) <= 1e-12);
+        assert_true(q.uN[2] == 0 && q.tau[2] == 0 && q.tau[4] == 0 && q.tau[5] == 0);
+        /* the IPS row with the sums of Eq. 20 */
+        assert_int_equal(lap_coeffs_d(&IPS, 2, co, n, l0, a, &err), UMP_OK);
+        for (int j = 0; j < n; j++) {
+            double h = off[0][j], k = off[1][j], r2 = h * h + k * k, r = sqrt(r2);
+            double w = r < re ? re / r - 1 : 0;
+            double e = 4 / O0 * w / r2 * (1 - cx * h - cy * k);
+            assert_true(fabs(a[j] - e) <= 1e-12 * (fabs(e) + 1 / (l0 * l0)));
+        }
+    }
+    /* regular lattice: PS = IPS, u_N = 0, tau = I (r_e = 2 l0: 8 neighbours) */
+    double xi, yi, hh[NMAX], kk[NMAX];
+    int n = cloud24(0.1, 0, 0, 0, &xi, &yi, hh, kk);
+    assert_int_equal(lap_coeffs(&PS, hh, kk, n, 0.1, a, &(ump_err){0}), UMP_OK);
+    assert_int_equal(lap_coeffs(&IPS, hh, kk, n, 0.1, a2, &(ump_err){0}), UMP_OK);
+    for (int j = 0; j < n; j++)
+        assert_true(fabs(a[j] - a2[j]) <= 1e-12 * fabs(a[j]) + 1e-9);
+    const double *co[3] = {hh, kk, NULL};
+    lap_quality q;
+    assert_int_equal(lap_quality_d(0, 2, co, n, 0.1, work, &q, &(ump_err){0}), UMP_OK);
+    assert_true(fabs(q.uN[0]) < 1e-10 && fabs(q.uN[1]) < 1e-10);
+    assert_true(fabs(q.tau[0] - 1) < 1e-12 && fabs(q.tau[1]) < 1e-12 && fabs(q.tau[3] - 1) < 1e-12);
+}
+
+/* Degenerate clouds in 3-D: all neighbours in a plane make CPM's 9x9 and
+ * IPS's 3x3 matrices singular; they are refused, not answered. */
+static void test_3d_singular(void **state)
+{
+    (void)state;
+    rng_seed(25);
+    double buf[3][NMAX], a[NMAX];
+    double *off[3] = {buf[0], buf[1], buf[2]};
+    int n = cloud_d(3, 1.0, 0.3, off);
+    for (int j = 0; j < n; j++)
+        off[2][j] = 0.3 * off[0][j] - 0.2 * off[1][j]; /* a plane through i */
+    const double *co[3] = {off[0], off[1], off[2]};
+    ump_err err;
+    assert_int_equal(lap_coeffs_d(&CPM, 3, co, n, 1.0, a, &err), UMP_ERR_SINGULAR);
+    print_message("coplanar, CPM: %s\n", err.msg);
+    assert_int_equal(lap_coeffs_d(&IPS, 3, co, n, 1.0, a, &err), UMP_ERR_SINGULAR);
+    print_message("coplanar, IPS: %s\n", err.msg);
+    assert_int_equal(lap_coeffs_d(&PS, 3, co, n, 1.0, a, &err), UMP_OK); /* PS needs no inverse */
+    assert_int_equal(lap_coeffs_d(&CPM, 4, co, n, 1.0, a, &err), UMP_ERR_INPUT);
+    assert_int_equal(lap_coeffs_d(&CPM, 0, co, n, 1.0, a, &err), UMP_ERR_INPUT);
+    lap_params bad = {LAP_IPS, -1};
+    assert_int_equal(lap_coeffs_d(&bad, 3, co, n, 1.0, a, &err), UMP_ERR_INPUT);
+    lap_params dflt = {LAP_IPS, 0};
+    assert_true(lap_re_factor(&dflt) == 2.0 && lap_re_factor(&(lap_params){LAP_MPS, 0}) == 2.1);
+}
+
 static void test_names(void **state)
 {
     (void)state;
@@ -442,6 +733,11 @@ int main(void)
         cmocka_unit_test(test_mps_regular_lattice),
         cmocka_unit_test(test_mps_inconsistent),
         cmocka_unit_test(test_mps_params),
+        cmocka_unit_test(test_ps_ips_1d_closed_forms),
+        cmocka_unit_test(test_three_point),
+        cmocka_unit_test(test_consistency_by_dimension),
+        cmocka_unit_test(test_quality_closed_forms),
+        cmocka_unit_test(test_3d_singular),
         cmocka_unit_test(test_names),
         cmocka_unit_test(test_timing),
     };
