@@ -218,3 +218,14 @@ log_max_continuity() {
 log_particles_left() {
     grep -o 'left the domain [0-9]*' "$1" | awk '{ s += $4 } END { print s + 0 }'
 }
+
+# kv_get LINE KEY: the value of KEY=value in a line of such pairs (the
+# RESULT/OPERATOR/DIFFUSION lines of the tools); empty if absent.
+kv_get() {
+    echo "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"
+}
+# observed_order E0 E1 N0 N1: log(E0/E1) / log(N1/N0), the order of an error
+# going from resolution N0 to N1 (negative when it grows).
+observed_order() {
+    awk -v a="$1" -v b="$2" -v n0="$3" -v n1="$4" 'BEGIN { printf "%.3f", log(a / b) / log(n1 / n0) }'
+}

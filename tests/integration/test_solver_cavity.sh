@@ -37,7 +37,7 @@ for run in "quad UMPPMstar fixedValue" "quad UMPPM fixedValue" "tri UMPPMstar mo
     fi
     line=$(grep '^RESULT' "$d.log")
     echo "$run: $line"
-    get() { echo "$line" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+    get() { kv_get "$line" "$1"; }
     bound=0.012
     [ "$1" = tri ] && bound=0.015
     for k in u_rms v_rms; do
