@@ -237,6 +237,14 @@ ump_status lap_coeffs(const lap_params *p, const double *h, const double *k, int
     return lap_coeffs_d(p, 2, off, n, l0, a, err);
 }
 
+double lap_value(const double *a, const double *phij, double phii, int n)
+{
+    double s = 0;
+    for (int j = 0; j < n; j++)
+        s += a[j] * (phij[j] - phii);
+    return s;
+}
+
 void lap_moments(int dim, const double *const *off, int n, const double *a, double first[3],
                  double second[6])
 {

@@ -59,6 +59,10 @@ ump_status lap_coeffs_d(const lap_params *p, int dim, const double *const *off, 
 ump_status lap_coeffs(const lap_params *p, const double *h, const double *k, int n, double l0,
                       double *a, ump_err *err);
 
+/* The explicit value: sum_j a_j (phi_j - phi_i) over a row a [n] from
+ * lap_coeffs_d / lap_coeffs, neighbour values phij [n]. */
+double lap_value(const double *a, const double *phij, double phii, int n);
+
 /* Modified-equation moments of a Laplacian row a [n]: what it gives for the
  * fields x_d and x_d x_e / 2, i.e. lap(phi) = first . grad phi +
  * second : grad grad phi + ...
