@@ -174,6 +174,19 @@ static ump_status gather(sol *S, ump_idx c, double x, double y, size_t exclude, 
     }
 }
 
+/* The neighbours of fluid particle i (all but itself) and their offsets
+ * into S->h, S->k: the set every particle Laplacian sees. */
+static ump_status gather_offsets(sol *S, size_t i, size_t *n, ump_err *err)
+{
+    const part_set *P = S->P;
+    UMP_CALL(gather(S, P->cell[i], P->x[i], P->y[i], i, n, err));
+    for (size_t j = 0; j < *n; j++) {
+        S->h[j] = S->nb[j].dx;
+        S->k[j] = S->nb[j].dy;
+    }
+    return UMP_OK;
+}
+
 /* Boundary particle values for this step (see the choices at the top). */
 static void set_boundary_particles(sol *S)
 {
@@ -397,11 +410,7 @@ static ump_status predictor(sol *S, double dt, sol_stats *st, ump_err *err)
     for (size_t i = 0; i < n; i++) {
         size_t cnt;
         ump_idx c = P->cell[i];
-        UMP_CALL(gather(S, c, P->x[i], P->y[i], i, &cnt, err));
-        for (size_t j = 0; j < cnt; j++) {
-            S->h[j] = S->nb[j].dx;
-            S->k[j] = S->nb[j].dy;
-        }
+        UMP_CALL(gather_offsets(S, i, &cnt, err));
         double l0 = sqrt(m->area[c]);
         ump_err lerr;
         if (lap_coeffs(&S->set.lap, S->h, S->k, (int)cnt, l0, S->a, &lerr) != UMP_OK) {
@@ -670,11 +679,7 @@ ump_status sol_particle_quality(sol *S, double *uN, double *tau, size_t *nfail, 
     for (size_t i = 0; i < P->n; i++) {
         size_t cnt;
         ump_idx c = P->cell[i];
-        UMP_CALL(gather(S, c, P->x[i], P->y[i], i, &cnt, err));
-        for (size_t j = 0; j < cnt; j++) {
-            S->h[j] = S->nb[j].dx;
-            S->k[j] = S->nb[j].dy;
-        }
+        UMP_CALL(gather_offsets(S, i, &cnt, err));
         const double *off[2] = {S->h, S->k};
         lap_quality q;
         ump_err lerr;
