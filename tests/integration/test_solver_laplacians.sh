@@ -16,7 +16,9 @@
 #     after one tiny step of UMPPM* (particles still on the regular lattice
 #     of centroids) the particles two cells or more from the walls have
 #     |u_N| l0 < 1e-6 and tau = diag(1, 1, 0) to 1e-6, and the ones next to a
-#     wall see the one-sided neighbourhood: max |u_N| l0 > 0.1.
+#     wall see the one-sided neighbourhood: max |u_N| l0 > 0.1;
+#   - reFactor 7 and an unknown laplacian end in one error naming
+#     system/fvSolution.
 # Needs UMPPMFOAM and TOOLDIR.
 set -eu -o pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -94,6 +96,21 @@ if (cd "$q" && foamToVTK -latestTime > log.foamToVTK 2>&1); then
 else
     echo "  FAIL foamToVTK"; fail=1
 fi
+echo "== bad settings"
+for kv in "reFactor 7" "laplacian SPH"; do
+    set -- $kv
+    b=$work/bad-$1
+    mkdir -p "$b"
+    cp -r "$q/system" "$q/constant" "$q/0" "$b/"
+    foamDictionary -entry "UMPPM/$1" -set "$2" "$b/system/fvSolution" > /dev/null
+    if (cd "$b" && "$UMPPMFOAM" > log 2>&1); then
+        echo "  FAIL UMPPM $1 $2 accepted"; fail=1
+    elif grep -q "FATAL ERROR: .*system/fvSolution.*$2" "$b/log"; then
+        echo "  ok   UMPPM $1 $2 refused: $(grep FATAL "$b/log")"
+    else
+        echo "  FAIL UMPPM $1 $2: no error naming system/fvSolution"; tail -2 "$b/log"; fail=1
+    fi
+done
 [ "$fail" = 0 ] || { echo "work dir kept: $work"; exit 1; }
 rm -rf "$work"
 echo "PASS"
