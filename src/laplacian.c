@@ -163,6 +163,7 @@ static ump_status kernel_coeffs(const lap_params *p, int dim, const double *cons
     UMP_CHECK(ref > 0 && isfinite(ref), err, UMP_ERR_INPUT,
               "%s Laplacian: re_factor = %g, expected > 0", name, ref);
     double re = ref * l0, den = 0;
+    int ips = p->model == LAP_IPS;
     /* Omega sums of seed 001 Eq. 5 (IPS): g = Omega_2^(1), G = Omega_2^(2). */
     double g[LAP_MAX_DIM] = {0}, G[SPD_MAX][SPD_MAX] = {{0}};
     for (int j = 0; j < n; j++) {
@@ -175,7 +176,7 @@ static ump_status kernel_coeffs(const lap_params *p, int dim, const double *cons
         default: /* PS (seed 001 Eq. 2) and IPS: weights w / r^2, normalised by Omega_0 */
             a[j] = w > 0 ? w / r2 : 0;
             den += w;
-            for (int d = 0; d < dim && p->model == LAP_IPS; d++) {
+            for (int d = 0; ips && d < dim; d++) {
                 g[d] += off[d][j] * a[j];
                 for (int e = d; e < dim; e++)
                     G[d][e] += off[d][j] * off[e][j] * a[j];
@@ -187,7 +188,7 @@ static ump_status kernel_coeffs(const lap_params *p, int dim, const double *cons
         return UMP_FAIL(err, UMP_ERR_SINGULAR, "%s Laplacian: no neighbour within r_e = %g (of %d)",
                         name, re, n);
     double c[LAP_MAX_DIM] = {0};
-    if (p->model == LAP_IPS) {
+    if (ips) {
         /* Eq. 18/27: G <grad phi> = Phi_2^(1); c = G^{-1} Omega_2^(1) (G symmetric). */
         spd_small f;
         double rc = spd_factor_invert(&f, dim, G);
@@ -205,7 +206,7 @@ static ump_status kernel_coeffs(const lap_params *p, int dim, const double *cons
     double s = 2.0 * dim / den; /* 2d / sum_j w_j r_j^2 (MPS) or 2d / Omega_0 (PS, IPS) */
     for (int j = 0; j < n; j++) {
         double corr = 1;
-        for (int d = 0; d < dim && p->model == LAP_IPS; d++)
+        for (int d = 0; ips && d < dim; d++)
             corr -= c[d] * off[d][j]; /* Eq. 20: minus the artificial convection */
         a[j] *= s * corr;
     }

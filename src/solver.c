@@ -675,7 +675,8 @@ ump_status sol_particle_quality(sol *S, double *uN, double *tau, size_t *nfail, 
 {
     part_set *P = S->P;
     size_t bad = 0;
-    UMP_CALL(part_bins_build(&S->bins, S->m, P, err));
+    /* the bins are current between steps: sol_set_particles and the
+     * management of Step 11 (part_manage) rebuild them on exit */
     for (size_t i = 0; i < P->n; i++) {
         size_t cnt;
         ump_idx c = P->cell[i];

@@ -20,18 +20,6 @@
 
 /* ---- helpers ---------------------------------------------------------- */
 
-static uint64_t rng_state;
-static void rng_seed(uint64_t s) { rng_state = s; }
-static double rnd(void) /* [0, 1), splitmix64 */
-{
-    uint64_t z = (rng_state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return (double)(z >> 11) * (1.0 / 9007199254740992.0);
-}
-static double rnd_in(double a, double b) { return a + (b - a) * rnd(); }
-
 #define NMAX 128
 
 /* The 24 neighbours of a particle in a lattice of spacing h jittered by
@@ -41,15 +29,15 @@ static double rnd_in(double a, double b) { return a + (b - a) * rnd(); }
 static int cloud24(double h, double jit, double ox, double oy, double *xi, double *yi,
                    double *hh, double *kk)
 {
-    *xi = ox + jit * rnd_in(-1, 1) * h;
-    *yi = oy + jit * rnd_in(-1, 1) * h;
+    *xi = ox + jit * tu_rnd_in(-1, 1) * h;
+    *yi = oy + jit * tu_rnd_in(-1, 1) * h;
     int n = 0;
     for (int i = -2; i <= 2; i++)
         for (int j = -2; j <= 2; j++) {
             if (i == 0 && j == 0)
                 continue;
-            double x = ox + (i + jit * rnd_in(-1, 1)) * h;
-            double y = oy + (j + jit * rnd_in(-1, 1)) * h;
+            double x = ox + (i + jit * tu_rnd_in(-1, 1)) * h;
+            double y = oy + (j + jit * tu_rnd_in(-1, 1)) * h;
             hh[n] = x - *xi;
             kk[n++] = y - *yi;
         }
@@ -84,16 +72,16 @@ static const lap_params MPS = {LAP_MPS, 2.1};
 static void test_cpm_quadratic_exact(void **state)
 {
     (void)state;
-    rng_seed(11);
+    tu_rng_seed(11);
     double hh[NMAX], kk[NMAX], a[NMAX], phi[NMAX];
     double worst = 0;
     for (int t = 0; t < 500; t++) {
-        double h = pow(10, rnd_in(-4, 2));
+        double h = pow(10, tu_rnd_in(-4, 2));
         double xi, yi;
-        int n = cloud24(h, 0.45, rnd_in(-10, 10) * h, rnd_in(-10, 10) * h, &xi, &yi, hh, kk);
+        int n = cloud24(h, 0.45, tu_rnd_in(-10, 10) * h, tu_rnd_in(-10, 10) * h, &xi, &yi, hh, kk);
         quad f;
         for (int i = 0; i < 6; i++)
-            f.q[i] = rnd_in(-1, 1) / (i == 0 ? 1 : i < 3 ? h : h * h);
+            f.q[i] = tu_rnd_in(-1, 1) / (i == 0 ? 1 : i < 3 ? h : h * h);
         ump_err err;
         assert_int_equal(lap_coeffs(&CPM, hh, kk, n, h, a, &err), UMP_OK);
         for (int j = 0; j < n; j++)
@@ -118,7 +106,7 @@ static double lap_error(const lap_params *p, double h, double jit, int nt)
     double hh[NMAX], kk[NMAX], a[NMAX], phi[NMAX], e = 0;
     for (int t = 0; t < nt; t++) {
         double xi, yi;
-        double ox = h * floor(rnd() / h), oy = h * floor(rnd() / h);
+        double ox = h * floor(tu_rnd() / h), oy = h * floor(tu_rnd() / h);
         int n = cloud24(h, jit, ox, oy, &xi, &yi, hh, kk);
         ump_err err;
         assert_int_equal(lap_coeffs(p, hh, kk, n, h, a, &err), UMP_OK);
@@ -132,7 +120,7 @@ static double lap_error(const lap_params *p, double h, double jit, int nt)
 static void test_cpm_order(void **state)
 {
     (void)state;
-    rng_seed(12);
+    tu_rng_seed(12);
     enum { NH = 5 };
     const double hs[NH] = {0.1, 0.05, 0.025, 0.0125, 0.00625};
     double e[NH];
@@ -193,7 +181,7 @@ static void test_cpm_singular(void **state)
 static void test_cpm_coincident_neighbour(void **state)
 {
     (void)state;
-    rng_seed(13);
+    tu_rng_seed(13);
     double hh[NMAX], kk[NMAX], a[NMAX], phi[NMAX], xi, yi;
     int n = cloud24(0.1, 0.3, 0, 0, &xi, &yi, hh, kk);
     hh[n] = 0;
@@ -214,7 +202,7 @@ static void test_cpm_coincident_neighbour(void **state)
  * modified Gram-Schmidt QR (twice) of the rows w_j p_j; return D_3 + D_5. */
 static double explicit_cpm(const double *hh, const double *kk, const double *dphi, int n)
 {
-    double Q[5][NMAX], b[NMAX], R[5][5] = {{0}};
+    double Q[5][NMAX], b[NMAX], D[5];
     for (int j = 0; j < n; j++) {
         double r = sqrt(hh[j] * hh[j] + kk[j] * kk[j]), w = 1 / (r * r * r);
         double p[5] = {hh[j], kk[j], 0.5 * hh[j] * hh[j], hh[j] * kk[j], 0.5 * kk[j] * kk[j]};
@@ -222,35 +210,7 @@ static double explicit_cpm(const double *hh, const double *kk, const double *dph
             Q[i][j] = w * p[i];
         b[j] = w * dphi[j];
     }
-    for (int c = 0; c < 5; c++) {
-        for (int pass = 0; pass < 2; pass++)
-            for (int i = 0; i < c; i++) {
-                double r = 0;
-                for (int j = 0; j < n; j++)
-                    r += Q[i][j] * Q[c][j];
-                R[i][c] += r;
-                for (int j = 0; j < n; j++)
-                    Q[c][j] -= r * Q[i][j];
-            }
-        double nr = 0;
-        for (int j = 0; j < n; j++)
-            nr += Q[c][j] * Q[c][j];
-        R[c][c] = sqrt(nr);
-        for (int j = 0; j < n; j++)
-            Q[c][j] /= R[c][c];
-    }
-    double z[5], D[5];
-    for (int i = 0; i < 5; i++) {
-        z[i] = 0;
-        for (int j = 0; j < n; j++)
-            z[i] += Q[i][j] * b[j];
-    }
-    for (int i = 4; i >= 0; i--) {
-        double v = z[i];
-        for (int c = i + 1; c < 5; c++)
-            v -= R[i][c] * D[c];
-        D[i] = v / R[i][i];
-    }
+    tu_lsq_qr(5, n, NMAX, &Q[0][0], b, D);
     return D[2] + D[4];
 }
 
@@ -259,18 +219,18 @@ static double explicit_cpm(const double *hh, const double *kk, const double *dph
 static void test_implicit_row(void **state)
 {
     (void)state;
-    rng_seed(14);
+    tu_rng_seed(14);
     double hh[NMAX], kk[NMAX], a[NMAX], phi[NMAX], dphi[NMAX];
     double worst = 0;
     for (int t = 0; t < 300; t++) {
-        double h = rnd_in(0.2, 2), xi, yi;
+        double h = tu_rnd_in(0.2, 2), xi, yi;
         int n = cloud24(h, 0.4, 0, 0, &xi, &yi, hh, kk);
-        n -= (int)(rnd() * 12); /* 12..24 neighbours */
+        n -= (int)(tu_rnd() * 12); /* 12..24 neighbours */
         ump_err err;
         assert_int_equal(lap_coeffs(&CPM, hh, kk, n, h, a, &err), UMP_OK);
-        double phii = rnd_in(-1, 1), diag = 0, row = 0;
+        double phii = tu_rnd_in(-1, 1), diag = 0, row = 0;
         for (int j = 0; j < n; j++) {
-            phi[j] = rnd_in(-1, 1); /* arbitrary data */
+            phi[j] = tu_rnd_in(-1, 1); /* arbitrary data */
             dphi[j] = phi[j] - phii;
             diag -= a[j];
             row += a[j] * phi[j];
@@ -295,11 +255,11 @@ static void test_implicit_row(void **state)
 static void test_mps_regular_lattice(void **state)
 {
     (void)state;
-    rng_seed(15);
+    tu_rng_seed(15);
     double hh[NMAX], kk[NMAX], a[NMAX], phi[NMAX];
     for (int t = 0; t < 50; t++) {
-        double l0 = pow(10, rnd_in(-3, 1)), xi, yi;
-        int n = cloud24(l0, 0, rnd_in(-3, 3), rnd_in(-3, 3), &xi, &yi, hh, kk);
+        double l0 = pow(10, tu_rnd_in(-3, 1)), xi, yi;
+        int n = cloud24(l0, 0, tu_rnd_in(-3, 3), tu_rnd_in(-3, 3), &xi, &yi, hh, kk);
         ump_err err;
         assert_int_equal(lap_coeffs(&MPS, hh, kk, n, l0, a, &err), UMP_OK);
         int inside = 0;
@@ -308,7 +268,7 @@ static void test_mps_regular_lattice(void **state)
         assert_int_equal(inside, 12); /* r in {1, sqrt 2, 2} l0 < 2.1 l0 */
         quad f;
         for (int i = 0; i < 6; i++)
-            f.q[i] = rnd_in(-1, 1);
+            f.q[i] = tu_rnd_in(-1, 1);
         for (int j = 0; j < n; j++)
             phi[j] = qval(&f, xi + hh[j], yi + kk[j]);
         double sc, lap = apply(a, phi, qval(&f, xi, yi), n, &sc);
@@ -334,12 +294,12 @@ static void test_mps_inconsistent(void **state)
     const double hs[NH] = {0.1, 0.05, 0.025, 0.0125, 0.00625};
     double emps[NH], ecpm[NH], equad[NH];
     for (int k = 0; k < NH; k++) {
-        rng_seed(16);
+        tu_rng_seed(16);
         emps[k] = lap_error(&MPS, hs[k], 0.2, NT);
-        rng_seed(16);
+        tu_rng_seed(16);
         ecpm[k] = lap_error(&CPM, hs[k], 0.2, NT);
         /* RMS error for phi = x^2 - y^2 */
-        rng_seed(17);
+        tu_rng_seed(17);
         double hh[NMAX], kk[NMAX], a[NMAX], s2 = 0;
         for (int t = 0; t < NT; t++) {
             double xi, yi;
@@ -406,7 +366,7 @@ static int cloud_d(int dim, double l0, double jit, double *off[3])
                 int o[3] = {i, j, k};
                 double r2 = 0, x[3];
                 for (int d = 0; d < dim; d++) {
-                    x[d] = (o[d] + jit * rnd_in(-1, 1)) * l0;
+                    x[d] = (o[d] + jit * tu_rnd_in(-1, 1)) * l0;
                     r2 += x[d] * x[d];
                 }
                 if (r2 >= 1.9 * 1.9 * l0 * l0 || r2 < 0.09 * l0 * l0)
@@ -424,16 +384,16 @@ static int cloud_d(int dim, double l0, double jit, double *off[3])
 static void test_ps_ips_1d_closed_forms(void **state)
 {
     (void)state;
-    rng_seed(21);
+    tu_rng_seed(21);
     double h[NMAX], c[NMAX], phi[NMAX];
     double worst = 0;
     for (int t = 0; t < 200; t++) {
-        double l0 = pow(10, rnd_in(-3, 1)), re = 2 * l0;
+        double l0 = pow(10, tu_rnd_in(-3, 1)), re = 2 * l0;
         int n = 0;
         for (int j = -2; j <= 2; j++) /* neighbours at (j +- 0.45) l0, j != 0 */
             if (j)
-                h[n++] = (j + 0.45 * rnd_in(-1, 1)) * l0;
-        double A = rnd_in(-2, 2) / l0, Bq = rnd_in(-2, 2) / (l0 * l0);
+                h[n++] = (j + 0.45 * tu_rnd_in(-1, 1)) * l0;
+        double A = tu_rnd_in(-2, 2) / l0, Bq = tu_rnd_in(-2, 2) / (l0 * l0);
         for (int j = 0; j < n; j++)
             phi[j] = A * h[j] + Bq * h[j] * h[j];
         double O0 = 0, O21 = 0, O23 = 0; /* Omega_0^(0), Omega_2^(1), Omega_2^(3) */
@@ -505,19 +465,19 @@ static void test_three_point(void **state)
 static void test_consistency_by_dimension(void **state)
 {
     (void)state;
-    rng_seed(22);
+    tu_rng_seed(22);
     double buf[3][NMAX], a[NMAX], phi[NMAX];
     double *off[3] = {buf[0], buf[1], buf[2]};
     for (int dim = 1; dim <= 3; dim++) {
         double wl = 0, wq = 0;
         for (int t = 0; t < 200; t++) {
-            double l0 = pow(10, rnd_in(-3, 1));
+            double l0 = pow(10, tu_rnd_in(-3, 1));
             int n = cloud_d(dim, l0, 0.3, off);
             double g[3], H[3][3];
             for (int d = 0; d < 3; d++) {
-                g[d] = rnd_in(-1, 1) / l0;
+                g[d] = tu_rnd_in(-1, 1) / l0;
                 for (int e = 0; e < 3; e++)
-                    H[d][e] = rnd_in(-1, 1) / (l0 * l0);
+                    H[d][e] = tu_rnd_in(-1, 1) / (l0 * l0);
             }
             ump_err err;
             const double *co[3] = {off[0], off[1], off[2]};
@@ -565,7 +525,7 @@ static void test_consistency_by_dimension(void **state)
                       "rel. error %.3g (200 clouds each)\n", dim, wl, wq);
     }
     /* u_N of PS scales as 1/l0 on a scaled copy of one cloud (O(1/delta), Eq. 12) */
-    rng_seed(23);
+    tu_rng_seed(23);
     int n = cloud_d(2, 1.0, 0.3, off);
     double base[3][NMAX];
     for (int d = 0; d < 2; d++)
@@ -594,11 +554,11 @@ static void test_consistency_by_dimension(void **state)
 static void test_quality_closed_forms(void **state)
 {
     (void)state;
-    rng_seed(24);
+    tu_rng_seed(24);
     double buf[3][NMAX], a[NMAX], a2[NMAX], work[NMAX];
     double *off[3] = {buf[0], buf[1], buf[2]};
     for (int t = 0; t < 100; t++) {
-        double l0 = pow(10, rnd_in(-2, 1)), re = 2 * l0;
+        double l0 = pow(10, tu_rnd_in(-2, 1)), re = 2 * l0;
         int n = cloud_d(2, l0, 0.4, off);
         double O[4][4] = {{0}}; /* O[q][r] = Omega_2^(q,r), plus Omega_0^(0,0) */
         double O0 = 0;
@@ -654,7 +614,7 @@ static void test_quality_closed_forms(void **state)
 static void test_3d_singular(void **state)
 {
     (void)state;
-    rng_seed(25);
+    tu_rng_seed(25);
     double buf[3][NMAX], a[NMAX];
     double *off[3] = {buf[0], buf[1], buf[2]};
     int n = cloud_d(3, 1.0, 0.3, off);
@@ -700,7 +660,7 @@ static void test_names(void **state)
 static void test_timing(void **state)
 {
     (void)state;
-    rng_seed(18);
+    tu_rng_seed(18);
     enum { REP = 200000 };
     double hh[NMAX], kk[NMAX], a[NMAX], xi, yi;
     int n = cloud24(1, 0.3, 0, 0, &xi, &yi, hh, kk);

@@ -16,26 +16,13 @@
 
 /* ---- helpers ---------------------------------------------------------- */
 
-/* splitmix64: deterministic, platform-independent. */
-static uint64_t rng_state;
-static void rng_seed(uint64_t s) { rng_state = s; }
-static double rnd(void) /* [0, 1) */
-{
-    uint64_t z = (rng_state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return (double)(z >> 11) * (1.0 / 9007199254740992.0);
-}
-static double rnd_in(double a, double b) { return a + (b - a) * rnd(); }
-
 /* Quadratic f = q0 + q1 x + q2 y + q3 xy + q4 x^2 + q5 y^2 (absolute coordinates). */
 typedef struct { double q[6]; } quad;
 static quad rnd_quad(void)
 {
     quad f;
     for (int i = 0; i < 6; i++)
-        f.q[i] = rnd_in(-1, 1);
+        f.q[i] = tu_rnd_in(-1, 1);
     return f;
 }
 static double qval(const quad *f, double x, double y)
@@ -97,18 +84,18 @@ static mls_basis check_quad(const quad *f, double x0, double y0, const double *d
 static void test_quadratic_random_clouds(void **state)
 {
     (void)state;
-    rng_seed(1);
+    tu_rng_seed(1);
     double dx[NMAX], dy[NMAX];
     int nquad = 0;
     double worst_rcond = 1;
     for (int t = 0; t < 500; t++) {
-        int n = 10 + (int)(rnd() * 31); /* 10..40 */
-        double h = pow(10, rnd_in(-3, 2));
-        double ax = rnd_in(0.5, 2); /* anisotropic cells */
-        double x0 = rnd_in(-5, 5) * h * 10, y0 = rnd_in(-5, 5) * h * 10;
+        int n = 10 + (int)(tu_rnd() * 31); /* 10..40 */
+        double h = pow(10, tu_rnd_in(-3, 2));
+        double ax = tu_rnd_in(0.5, 2); /* anisotropic cells */
+        double x0 = tu_rnd_in(-5, 5) * h * 10, y0 = tu_rnd_in(-5, 5) * h * 10;
         for (int j = 0; j < n; j++) {
-            dx[j] = rnd_in(-2.5, 2.5) * h * ax;
-            dy[j] = rnd_in(-2.5, 2.5) * h;
+            dx[j] = tu_rnd_in(-2.5, 2.5) * h * ax;
+            dy[j] = tu_rnd_in(-2.5, 2.5) * h;
         }
         quad f = rnd_quad();
         /* rescale f so it varies O(1) over the stencil */
@@ -132,15 +119,15 @@ static void test_quadratic_random_clouds(void **state)
 static void test_quadratic_triangle_mesh(void **state)
 {
     (void)state;
-    rng_seed(2);
+    tu_rng_seed(2);
     enum { NV = 8 };
     const double h = 0.01;
     double vx[NV][NV], vy[NV][NV];
     for (int i = 0; i < NV; i++)
         for (int j = 0; j < NV; j++) {
             double jit = (i > 0 && i < NV - 1 && j > 0 && j < NV - 1) ? 0.25 : 0;
-            vx[i][j] = (i + jit * rnd_in(-1, 1)) * h;
-            vy[i][j] = (j + jit * rnd_in(-1, 1)) * 1.5 * h; /* stretched */
+            vx[i][j] = (i + jit * tu_rnd_in(-1, 1)) * h;
+            vy[i][j] = (j + jit * tu_rnd_in(-1, 1)) * 1.5 * h; /* stretched */
         }
     /* all points: vertices + centroids of the two triangles per quad */
     double px[3 * NV * NV], py[3 * NV * NV];
@@ -205,16 +192,16 @@ static void test_quadratic_triangle_mesh(void **state)
 static void test_linear_fallback(void **state)
 {
     (void)state;
-    rng_seed(3);
+    tu_rng_seed(3);
     double dx[NMAX], dy[NMAX], c0[NMAX], cx[NMAX], cy[NMAX], u[NMAX];
     for (int t = 0; t < 100; t++) {
         int n = 5; /* < MLS_MIN_QUAD */
-        double h = pow(10, rnd_in(-3, 1));
+        double h = pow(10, tu_rnd_in(-3, 1));
         for (int j = 0; j < n; j++) {
-            dx[j] = rnd_in(-2, 2) * h;
-            dy[j] = rnd_in(-2, 2) * h;
+            dx[j] = tu_rnd_in(-2, 2) * h;
+            dy[j] = tu_rnd_in(-2, 2) * h;
         }
-        double a = rnd_in(-1, 1), b = rnd_in(-1, 1) / h, c = rnd_in(-1, 1) / h;
+        double a = tu_rnd_in(-1, 1), b = tu_rnd_in(-1, 1) / h, c = tu_rnd_in(-1, 1) / h;
         double x0 = 3 * h, y0 = -h;
         for (int j = 0; j < n; j++)
             u[j] = a + b * (x0 + dx[j]) + c * (y0 + dy[j]);
@@ -290,7 +277,7 @@ static void oracle_wls(const double *dx, const double *dy, const double *u, int 
     }
     double xm = mx + mdx, ym = my + mdy;
     static double Q[6][NMAX];
-    double b[NMAX], Rm[6][6] = {{0}};
+    double b[NMAX];
     for (int j = 0; j < n; j++) {
         double X = dx[j] / xm, Y = dy[j] / ym, rho = sqrt(X * X + Y * Y);
         double w = rho > 0 ? 1 / rho - 1 : MLS_W_MAX; /* Eq. 35 */
@@ -301,36 +288,8 @@ static void oracle_wls(const double *dx, const double *dy, const double *u, int 
             Q[i][j] = sw * row[i];
         b[j] = sw * u[j];
     }
-    for (int k = 0; k < 6; k++) {
-        for (int pass = 0; pass < 2; pass++)
-            for (int i = 0; i < k; i++) {
-                double r = 0;
-                for (int j = 0; j < n; j++)
-                    r += Q[i][j] * Q[k][j];
-                Rm[i][k] += r;
-                for (int j = 0; j < n; j++)
-                    Q[k][j] -= r * Q[i][j];
-            }
-        double nr = 0;
-        for (int j = 0; j < n; j++)
-            nr += Q[k][j] * Q[k][j];
-        nr = sqrt(nr);
-        Rm[k][k] = nr;
-        for (int j = 0; j < n; j++)
-            Q[k][j] /= nr;
-    }
-    double z[6], x[6];
-    for (int i = 0; i < 6; i++) {
-        z[i] = 0;
-        for (int j = 0; j < n; j++)
-            z[i] += Q[i][j] * b[j];
-    }
-    for (int i = 5; i >= 0; i--) {
-        double v = z[i];
-        for (int k = i + 1; k < 6; k++)
-            v -= Rm[i][k] * x[k];
-        x[i] = v / Rm[i][i];
-    }
+    double x[6];
+    tu_lsq_qr(6, n, NMAX, &Q[0][0], b, x);
     m[0] = x[0];
     m[1] = x[1];
     m[2] = x[2];
@@ -339,16 +298,16 @@ static void oracle_wls(const double *dx, const double *dy, const double *u, int 
 static void test_oracle(void **state)
 {
     (void)state;
-    rng_seed(4);
+    tu_rng_seed(4);
     double dx[NMAX], dy[NMAX], c0[NMAX], cx[NMAX], cy[NMAX], u[NMAX];
     double worst = 0;
     for (int t = 0; t < 300; t++) {
-        int n = 10 + (int)(rnd() * 31);
-        double h = rnd_in(0.3, 3), ax = rnd_in(0.5, 2);
+        int n = 10 + (int)(tu_rnd() * 31);
+        double h = tu_rnd_in(0.3, 3), ax = tu_rnd_in(0.5, 2);
         for (int j = 0; j < n; j++) {
-            dx[j] = rnd_in(-2.5, 2.5) * h * ax;
-            dy[j] = rnd_in(-2.5, 2.5) * h;
-            u[j] = rnd_in(-1, 1); /* arbitrary data: not a polynomial */
+            dx[j] = tu_rnd_in(-2.5, 2.5) * h * ax;
+            dy[j] = tu_rnd_in(-2.5, 2.5) * h;
+            u[j] = tu_rnd_in(-1, 1); /* arbitrary data: not a polynomial */
         }
         if (t % 10 == 0) { /* a sample on the target */
             dx[0] = 0;
@@ -371,12 +330,12 @@ static void test_oracle(void **state)
 static void test_scale_invariance(void **state)
 {
     (void)state;
-    rng_seed(5);
+    tu_rng_seed(5);
     enum { N = 24 };
     double dx[N], dy[N], c0[N], cx[N], cy[N];
     for (int j = 0; j < N; j++) {
-        dx[j] = rnd_in(-2.5, 2.5);
-        dy[j] = rnd_in(-2.5, 2.5);
+        dx[j] = tu_rnd_in(-2.5, 2.5);
+        dy[j] = tu_rnd_in(-2.5, 2.5);
     }
     mls_weights(dx, dy, N, 1, 1, c0, cx, cy, NULL);
     const double scales[2] = {1e-4, 1e4};
@@ -399,12 +358,12 @@ static void test_scale_invariance(void **state)
 static void test_sample_on_target(void **state)
 {
     (void)state;
-    rng_seed(6);
+    tu_rng_seed(6);
     enum { N = 16 };
     double dx[N], dy[N], c0[N], cx[N], cy[N];
     for (int j = 0; j < N; j++) {
-        dx[j] = rnd_in(-2, 2) * 0.1;
-        dy[j] = rnd_in(-2, 2) * 0.1;
+        dx[j] = tu_rnd_in(-2, 2) * 0.1;
+        dy[j] = tu_rnd_in(-2, 2) * 0.1;
     }
     dx[3] = 0;
     dy[3] = 0;
@@ -434,17 +393,17 @@ static void conv_errors(double h, double *e0, double *e1)
     double dx[NMAX], dy[NMAX], c0[NMAX], cx[NMAX], cy[NMAX], u[NMAX];
     *e0 = *e1 = 0;
     for (int t = 0; t < NT; t++) {
-        double x0 = rnd_in(0, 1), y0 = rnd_in(0, 1);
+        double x0 = tu_rnd_in(0, 1), y0 = tu_rnd_in(0, 1);
         int i0 = (int)floor(x0 / h), j0 = (int)floor(y0 / h);
         int n = 0;
         /* lattice nodes of the two cell layers around the target's cell;
          * each node's jitter is a hash of (i, j) so it does not depend on t */
         for (int i = i0 - 2; i <= i0 + 3; i++)
             for (int j = j0 - 2; j <= j0 + 3; j++) {
-                uint64_t save = rng_state;
-                rng_seed((uint64_t)(i * 7919 + j * 104729) ^ 0x1234567ULL);
-                double x = (i + 0.3 * rnd_in(-1, 1)) * h, y = (j + 0.3 * rnd_in(-1, 1)) * h;
-                rng_state = save;
+                uint64_t save = tu_rng_state;
+                tu_rng_seed((uint64_t)(i * 7919 + j * 104729) ^ 0x1234567ULL);
+                double x = (i + 0.3 * tu_rnd_in(-1, 1)) * h, y = (j + 0.3 * tu_rnd_in(-1, 1)) * h;
+                tu_rng_state = save;
                 dx[n] = x - x0;
                 dy[n] = y - y0;
                 u[n++] = fs(x, y);
@@ -459,7 +418,7 @@ static void conv_errors(double h, double *e0, double *e1)
 static void test_convergence(void **state)
 {
     (void)state;
-    rng_seed(7);
+    tu_rng_seed(7);
     const double hs[5] = {0.1, 0.05, 0.025, 0.0125, 0.00625};
     double e0[5], e1[5];
     for (int k = 0; k < 5; k++) {
@@ -482,12 +441,12 @@ static void test_convergence(void **state)
 static void test_timing(void **state)
 {
     (void)state;
-    rng_seed(8);
+    tu_rng_seed(8);
     enum { N = 24, REP = 200000 };
     double dx[N], dy[N], c0[N], cx[N], cy[N];
     for (int j = 0; j < N; j++) {
-        dx[j] = rnd_in(-2.5, 2.5);
-        dy[j] = rnd_in(-2.5, 2.5);
+        dx[j] = tu_rnd_in(-2.5, 2.5);
+        dy[j] = tu_rnd_in(-2.5, 2.5);
     }
     struct timespec t0, t1;
     double acc = 0;

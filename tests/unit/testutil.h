@@ -68,4 +68,57 @@ static inline void tu_rmtree(const char *dir)
         fail_msg("%s = %.17g, %s = %.17g, tol %g", #a, tu_a_, #b, tu_b_, (double)(tol)); \
 } while (0)
 
+/* splitmix64 random numbers: deterministic, platform-independent. */
+static uint64_t tu_rng_state;
+static inline void tu_rng_seed(uint64_t s) { tu_rng_state = s; }
+static inline double tu_rnd(void) /* [0, 1) */
+{
+    uint64_t z = (tu_rng_state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    return (double)(z >> 11) * (1.0 / 9007199254740992.0);
+}
+static inline double tu_rnd_in(double a, double b) { return a + (b - a) * tu_rnd(); }
+
+/* Least squares min |A x - b| for a tall A (n rows, m <= 9 columns) given
+ * column-wise: column i is Q[i * ld + 0 .. n-1]. Modified Gram-Schmidt QR,
+ * twice for re-orthogonalisation, then back substitution -- an oracle
+ * computed differently from the normal equations the library uses.
+ * Overwrites Q; x gets m values. */
+static inline void tu_lsq_qr(int m, int n, int ld, double *Q, const double *b, double *x)
+{
+    double R[9][9] = {{0}}, z[9];
+    for (int c = 0; c < m; c++) {
+        double *qc = Q + (size_t)c * ld;
+        for (int pass = 0; pass < 2; pass++)
+            for (int i = 0; i < c; i++) {
+                const double *qi = Q + (size_t)i * ld;
+                double r = 0;
+                for (int j = 0; j < n; j++)
+                    r += qi[j] * qc[j];
+                R[i][c] += r;
+                for (int j = 0; j < n; j++)
+                    qc[j] -= r * qi[j];
+            }
+        double nr = 0;
+        for (int j = 0; j < n; j++)
+            nr += qc[j] * qc[j];
+        R[c][c] = sqrt(nr);
+        for (int j = 0; j < n; j++)
+            qc[j] /= R[c][c];
+    }
+    for (int i = 0; i < m; i++) {
+        z[i] = 0;
+        for (int j = 0; j < n; j++)
+            z[i] += Q[(size_t)i * ld + j] * b[j];
+    }
+    for (int i = m - 1; i >= 0; i--) {
+        double v = z[i];
+        for (int c = i + 1; c < m; c++)
+            v -= R[i][c] * x[c];
+        x[i] = v / R[i][i];
+    }
+}
+
 #endif
