@@ -292,6 +292,16 @@ static double num(const char *s, const char *name)
     return v;
 }
 
+static int inum(const char *s, const char *name)
+{
+    double v = num(s, name);
+    if (v != floor(v) || fabs(v) > 1e9) {
+        fprintf(stderr, "laplacianAccuracy: %s '%s' is not an integer\n", name, s);
+        exit(1);
+    }
+    return (int)v;
+}
+
 /* ---- operator test ------------------------------------------------------ */
 static double sinprod(const cloud *c, size_t p)
 {
@@ -481,17 +491,17 @@ int main(int argc, char **argv)
             return 1;
         }
         i++;
-        if (!strcmp(k, "-dim")) o.dim = (int)num(v, k);
-        else if (!strcmp(k, "-nC")) o.nc = (int)num(v, k);
+        if (!strcmp(k, "-dim")) o.dim = inum(v, k);
+        else if (!strcmp(k, "-nC")) o.nc = inum(v, k);
         else if (!strcmp(k, "-alpha")) o.alpha = num(v, k);
-        else if (!strcmp(k, "-seed")) o.seed = (int)num(v, k);
+        else if (!strcmp(k, "-seed")) o.seed = inum(v, k);
         else if (!strcmp(k, "-reFactor")) o.refac = num(v, k);
         else if (!strcmp(k, "-models")) parse_models(v, &o);
         else if (!strcmp(k, "-CD")) o.cd = num(v, k);
         else if (!strcmp(k, "-endTime")) o.end = num(v, k);
         else if (!strcmp(k, "-beta")) o.beta = num(v, k);
         else if (!strcmp(k, "-gamma")) o.gamma = num(v, k);
-        else if (!strcmp(k, "-samples")) o.samples = (int)num(v, k);
+        else if (!strcmp(k, "-samples")) o.samples = inum(v, k);
         else if (!strcmp(k, "-phiStar")) o.phistar = num(v, k);
         else {
             fprintf(stderr, "laplacianAccuracy: unknown option %s\n%s", k, usage);

@@ -77,6 +77,8 @@ check_range "CPM diffusion order (2-D, 32 -> 64)" "$(observed_order "$(diffusion
 echo "== bad input"
 if "$la" operator -dim 4 > /dev/null 2> "$out.err"; then echo "  FAIL -dim 4 accepted"; fail=1
 else echo "  ok   -dim 4 refused: $(cat "$out.err")"; fi
+if "$la" operator -dim 1.5 > /dev/null 2> "$out.err"; then echo "  FAIL -dim 1.5 accepted"; fail=1
+else echo "  ok   -dim 1.5 refused: $(cat "$out.err")"; fi
 if "$la" operator -models CPM,XYZ > /dev/null 2> "$out.err"; then echo "  FAIL -models XYZ accepted"; fail=1
 else echo "  ok   -models XYZ refused: $(cat "$out.err")"; fi
 rm -f "$out".*
