@@ -8,12 +8,21 @@
  * maxCo as setDeltaT.H), Time = ..., one UMPPM step, log, and at write
  * times U, p, the cloud and uniform/time into a time directory written under
  * a temporary name and renamed into place.
+ *
+ * Buoyant cases are recognised by constant/g, as buoyantBoussinesqPimpleFoam
+ * sets them up: transportProperties then needs beta, TRef and Pr, the start
+ * time T, p_rgh and U (p and alphat optional; alphat is only checked to
+ * parse, as it is zero for laminar flow), and T, p_rgh and p (p = p_rgh +
+ * rhok gh) are written, with the particle temperature in the cloud.
+ * Without constant/g the case is isothermal (icoFoam's U and p).
+ * constant/turbulenceProperties, if present, must say laminar.
  */
 #include "umppm/app.h"
 #include "umppm/case.h"
 #include "umppm/field.h"
 #include "umppm/foam.h"
 #include "umppm/fieldio.h"
+#include "umppm/funcobj.h"
 #include "umppm/mesh2d.h"
 #include "umppm/polymesh.h"
 #include "umppm/runtime.h"
@@ -32,10 +41,15 @@ typedef struct app {
     case_transport tr;
     case_solution so;
     case_umppm um;
+    case_buoyancy bu;
     pmesh *pm;
     mesh2d *m;
-    fld_field *U, *p;
+    fld_field *U, *p, *T, *prgh;   /* T, p_rgh: buoyant only */
     sol *S;
+    fob_list fo;                    /* controlDict function objects */
+    double *fo_x3, *fo_area, *fo_dTdn, *fo_Tf; /* per-patch scratch */
+    ump_idx *fo_face;
+    size_t fo_cap;
     char **written;          /* purgeWrite bookkeeping */
     int nwritten;
 } app;
@@ -52,6 +66,14 @@ static void app_free(app *a)
     sol_free(&a->S);
     fld_free(&a->U);
     fld_free(&a->p);
+    fld_free(&a->T);
+    fld_free(&a->prgh);
+    fob_free(&a->fo);
+    free(a->fo_x3);
+    free(a->fo_area);
+    free(a->fo_dTdn);
+    free(a->fo_Tf);
+    free(a->fo_face);
     mesh_free(&a->m);
     pmesh_free(&a->pm);
     for (int i = 0; i < a->nwritten; i++)
@@ -76,6 +98,15 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->pred_maxit = (int)a->um.pred_maxit;
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
     s->p_ref_value = a->so.p_ref_value;
+    if (a->bu.on) {
+        s->buoyant = 1;
+        memcpy(s->g, a->bu.g, sizeof s->g);
+        /* readhRef.H: ghRef = -mag(g) hRef */
+        s->gh_ref = -sqrt(s->g[0] * s->g[0] + s->g[1] * s->g[1] + s->g[2] * s->g[2]) * a->bu.h_ref;
+        s->beta = a->tr.beta;
+        s->t_ref = a->tr.TRef;
+        s->kappa = a->tr.nu / a->tr.Pr; /* alphaEff = nu/Pr + alphat, alphat = 0 (laminar) */
+    }
     if (a->so.has_p_ref_point) {
         /* the cell containing pRefPoint */
         double X = a->so.p_ref_point[a->m->ax[0]], Y = a->so.p_ref_point[a->m->ax[1]];
@@ -127,8 +158,23 @@ static void fill_fields(app *a)
             Uv[m->ax[0]] = u;
             Uv[m->ax[1]] = v;
             a->p->patch[p].value[i] = pv;
+            if (a->T) {
+                ump_idx c = a->pm->owner[pp->start + i];
+                if (f < m->ninternal) {
+                    a->T->patch[p].value[i] = sol_cell_T(a->S)[c];
+                    sol_buoyant_pressure(a->S, c, -1, &a->p->patch[p].value[i], &a->prgh->patch[p].value[i]);
+                } else {
+                    a->T->patch[p].value[i] = sol_face_T(a->S, f);
+                    sol_buoyant_pressure(a->S, -1, f, &a->p->patch[p].value[i], &a->prgh->patch[p].value[i]);
+                }
+            }
         }
     }
+    if (a->T)
+        for (ump_idx c = 0; c < m->ncells; c++) {
+            a->T->internal[c] = sol_cell_T(a->S)[c];
+            sol_buoyant_pressure(a->S, c, -1, &a->p->internal[c], &a->prgh->internal[c]);
+        }
 }
 
 /* writeQuality: the particle fields uN (vector, seed 001 Eq. 13) and tau
@@ -194,8 +240,12 @@ static ump_status write_time(app *a, const rt_time *t, ump_err *err)
     }
     if ((rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->U, &fmt, err)) != UMP_OK ||
         (rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->p, &fmt, err)) != UMP_OK ||
+        (a->T && (rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->T, &fmt, err)) != UMP_OK) ||
+        (a->T && (rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->prgh, &fmt, err)) != UMP_OK) ||
         (rc = fio_write_cloud(td.tmp_dir, t->name, a->um.cloud_name, P->n, pos, vel, P->cell, P->id,
                               a->ctl.write_precision, err)) != UMP_OK ||
+        (a->T && (rc = fio_write_cloud_field(td.tmp_dir, t->name, a->um.cloud_name, "T", 1, P->n, P->T,
+                                             a->ctl.write_precision, err)) != UMP_OK) ||
         (a->um.write_quality && (rc = write_quality(a, td.tmp_dir, t->name, err)) != UMP_OK) ||
         (rc = fio_write_uniform_time(td.tmp_dir, t->name, t->value, t->name, t->index, t->delta_t,
                                      t->delta_t0, a->ctl.write_precision, a->ctl.time_format_fixed,
@@ -237,13 +287,18 @@ static ump_status restart_cloud(app *a, const char *tname, ump_err *err)
     if (!foam_file_exists(path))
         return UMP_OK;
     size_t n = 0, dropped = 0;
-    double *pos = NULL, *vel = NULL, *xy = NULL;
+    double *pos = NULL, *vel = NULL, *xy = NULL, *T = NULL;
     int64_t *id = NULL;
     ump_idx *cell = NULL;
     UMP_CALL(fio_read_cloud(dir, a->um.cloud_name, &n, &pos, &vel, &id, &cell, err));
     ump_status rc = UMP_OK;
-    xy = ump_alloc_array(4 * n, sizeof *xy);
-    if (!xy) {
+    snprintf(path, sizeof path, "%s/lagrangian/%s/T", dir, a->um.cloud_name);
+    if (a->T && foam_file_exists(path))
+        rc = fio_read_cloud_field(dir, a->um.cloud_name, "T", 1, n, &T, err);
+    xy = rc == UMP_OK ? ump_alloc_array(4 * n, sizeof *xy) : NULL;
+    if (rc != UMP_OK) {
+        /* the message is set */
+    } else if (!xy) {
         rc = UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
     } else {
         const int *ax = a->m->ax;
@@ -253,12 +308,14 @@ static ump_status restart_cloud(app *a, const char *tname, ump_err *err)
             xy[2 * n + i] = vel[3 * i + (size_t)ax[0]];
             xy[3 * n + i] = vel[3 * i + (size_t)ax[1]];
         }
-        rc = sol_set_particles(a->S, n, xy, xy + n, xy + 2 * n, xy + 3 * n, id, cell, &dropped, err);
+        rc = sol_set_particles(a->S, n, xy, xy + n, xy + 2 * n, xy + 3 * n, T, id, cell, &dropped, err);
         if (rc == UMP_OK)
-            printf("Restart: %zu particles read from %s/lagrangian/%s (%zu outside the mesh dropped)\n\n",
-                   n - dropped, tname, a->um.cloud_name, dropped);
+            printf("Restart: %zu particles read from %s/lagrangian/%s (%zu outside the mesh dropped)%s\n\n",
+                   n - dropped, tname, a->um.cloud_name, dropped,
+                   a->T && !T ? "; no particle T: the cell temperature" : "");
     }
     free(xy);
+    free(T);
     free(pos);
     free(vel);
     free(id);
@@ -269,10 +326,131 @@ static ump_status restart_cloud(app *a, const char *tname, ump_err *err)
 static int finite_fields(const app *a)
 {
     const double *u = sol_cell_u(a->S), *v = sol_cell_v(a->S), *p = sol_cell_p(a->S);
+    const double *T = sol_cell_T(a->S);
     for (ump_idx c = 0; c < a->m->ncells; c++)
-        if (!isfinite(u[c]) || !isfinite(v[c]) || !isfinite(p[c]))
+        if (!isfinite(u[c]) || !isfinite(v[c]) || !isfinite(p[c]) || (T && !isfinite(T[c])))
             return 0;
     return 1;
+}
+
+/* Read a start-time field; a missing optional one gets `calculated`
+ * patches (values from like) instead. */
+static ump_status read_start_field(app *a, const char *tname, const char *name, int ncomp, int optional,
+                                   fld_field **out, ump_err *err)
+{
+    char path[4400];
+    snprintf(path, sizeof path, "%s/%s/%s", a->case_dir, tname, name);
+    if (optional && !foam_file_exists(path)) {
+        ump_idx *sizes = ump_alloc_array((size_t)a->pm->npatches + 1, sizeof *sizes);
+        if (!sizes)
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
+        for (int p = 0; p < a->pm->npatches; p++)
+            sizes[p] = a->pm->patch[p].n;
+        ump_status rc = fld_create(name, ncomp, a->m->ncells, a->pm->npatches, sizes, out, err);
+        free(sizes);
+        if (rc == UMP_OK)
+            for (int p = 0; p < a->pm->npatches; p++)
+                if (a->pm->patch[p].kind == PMESH_EMPTY || a->pm->patch[p].kind == PMESH_CYCLIC)
+                    (*out)->patch[p].type = a->pm->patch[p].kind == PMESH_EMPTY ? FLD_BC_EMPTY
+                                                                                  : FLD_BC_CYCLIC;
+        return rc;
+    }
+    printf("Reading field %s\n\n", name);
+    return fio_read_field(path, a->pm, ncomp, out, err);
+}
+
+/* The buoyant part of the set-up: g, Boussinesq constants, T, p_rgh, p,
+ * alphat (see the top of the file). */
+static ump_status read_buoyant(app *a, const char *tname, ump_err *err)
+{
+    char path[4400];
+    UMP_CALL(case_require_boussinesq(a->case_dir, &a->tr, err));
+    printf("Reading field T\n\n");
+    snprintf(path, sizeof path, "%s/%s/T", a->case_dir, tname);
+    if (!foam_file_exists(path))
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: not found: a buoyant case (constant/g present) needs the "
+                        "temperature field T", path);
+    UMP_CALL(fio_read_field(path, a->pm, 1, &a->T, err));
+    UMP_CALL(read_start_field(a, tname, "p_rgh", 1, 0, &a->prgh, err));
+    snprintf(path, sizeof path, "%s/%s/alphat", a->case_dir, tname);
+    if (foam_file_exists(path)) {
+        foam_file *f = NULL;
+        printf("Reading field alphat (laminar: not used)\n\n");
+        UMP_CALL(foam_file_read(path, &f, err));
+        foam_file_free(&f);
+    }
+    printf("Calculating field g.h (g = (%g %g %g), hRef = %g)\n\n", a->bu.g[0], a->bu.g[1], a->bu.g[2],
+           a->bu.h_ref);
+    return UMP_OK;
+}
+
+/* Patch data of a Nusselt function object (faces of the named patch). */
+static ump_status fo_faces(app *a, const fob_nusselt *f, fob_faces *d, ump_err *err)
+{
+    int pi = -1;
+    for (int p = 0; p < a->pm->npatches; p++)
+        if (strcmp(a->pm->patch[p].name, f->patch) == 0)
+            pi = p;
+    if (pi < 0)
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/controlDict: function object '%s': no patch '%s' "
+                        "in constant/polyMesh/boundary", a->case_dir, f->name, f->patch);
+    const pmesh_patch *pp = &a->pm->patch[pi];
+    const mesh2d *m = a->m;
+    if ((size_t)pp->n > a->fo_cap) {
+        size_t c = (size_t)pp->n;
+        double **arr[] = {&a->fo_x3, &a->fo_area, &a->fo_dTdn, &a->fo_Tf};
+        for (size_t i = 0; i < 4; i++) {
+            free(*arr[i]);
+            if (!(*arr[i] = ump_alloc_array(i ? c : 3 * c, sizeof(double))))
+                return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
+        }
+        free(a->fo_face);
+        if (!(a->fo_face = ump_alloc_array(c, sizeof *a->fo_face)))
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
+        a->fo_cap = c;
+    }
+    size_t n = 0;
+    for (ump_idx i = 0; i < pp->n; i++) {
+        ump_idx f2 = m->pmface_to_face[pp->start + i];
+        if (f2 < m->ninternal)
+            continue;
+        UMP_CALL(sol_wall_dTdn(a->S, f2, f->snGrad ? SOL_GRAD_SNGRAD : SOL_GRAD_MLS, &a->fo_dTdn[n], err));
+        mesh_to3d(m, m->fx[f2], m->fy[f2], a->fo_x3 + 3 * n);
+        a->fo_area[n] = m->len[f2];
+        a->fo_Tf[n] = sol_face_T(a->S, f2);
+        n++;
+    }
+    if (n == 0)
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/controlDict: function object '%s': patch '%s' has no "
+                        "boundary faces in 2-D (empty or cyclic)", a->case_dir, f->name, f->patch);
+    d->n = n;
+    d->x3 = a->fo_x3;
+    d->area = a->fo_area;
+    d->dTdn = a->fo_dTdn;
+    d->Tf = a->fo_Tf;
+    return UMP_OK;
+}
+
+/* Run the function objects after a step (and at the start, step 0). */
+static ump_status run_functions(app *a, const rt_time *t, long step, const char *start_name, ump_err *err)
+{
+    for (int i = 0; i < a->fo.n; i++) {
+        fob_nusselt *f = &a->fo.nu[i];
+        int write_time = step == 0 || t->write_time;
+        if (!fob_due(f, step, write_time) && !t->write_time)
+            continue;
+        fob_faces d;
+        UMP_CALL(fo_faces(a, f, &d, err));
+        fob_result r = fob_nusselt_eval(f, &d, a->tr.TRef);
+        if (fob_due(f, step, write_time)) {
+            UMP_CALL(fob_nusselt_append(f, a->case_dir, start_name, t->value, &r, a->ctl.write_precision, err));
+            printf("nusseltNumber %s: patch %s Nu_avg = %g (min %g, max %g)\n", f->name, f->patch, r.Nu_avg,
+                   r.Nu_min, r.Nu_max);
+        }
+        if (t->write_time && step > 0)
+            UMP_CALL(fob_nusselt_local(f, a->case_dir, t->name, &d, &r, a->ctl.write_precision, err));
+    }
+    return UMP_OK;
 }
 
 ump_status app_run(const char *case_dir, ump_err *err)
@@ -281,7 +459,7 @@ ump_status app_run(const char *case_dir, ump_err *err)
     memset(&a, 0, sizeof a);
     a.case_dir = case_dir;
     ump_status rc;
-    char tname[256], pmdir[4096], path[4400];
+    char tname[256], pmdir[4096];
     double t0, wall0 = wall_seconds();
     clock_t cpu0 = clock();
     sol_settings s;
@@ -296,18 +474,20 @@ ump_status app_run(const char *case_dir, ump_err *err)
     printf("Reading transportProperties\n\n");
     if ((rc = case_read_transport(case_dir, &a.tr, err)) != UMP_OK ||
         (rc = case_read_solution(case_dir, &a.so, err)) != UMP_OK ||
-        (rc = case_read_umppm(case_dir, &a.um, err)) != UMP_OK)
+        (rc = case_read_umppm(case_dir, &a.um, err)) != UMP_OK ||
+        (rc = case_check_laminar(case_dir, err)) != UMP_OK ||
+        (rc = case_read_buoyancy(case_dir, &a.bu, err)) != UMP_OK ||
+        (rc = fob_read(case_dir, &a.fo, err)) != UMP_OK)
         goto done;
-    printf("Reading field p\n\n");
-    snprintf(path, sizeof path, "%s/%s/p", case_dir, tname);
-    if ((rc = fio_read_field(path, a.pm, 1, &a.p, err)) != UMP_OK)
+    if (a.bu.on && (rc = read_buoyant(&a, tname, err)) != UMP_OK)
         goto done;
-    printf("Reading field U\n\n");
-    snprintf(path, sizeof path, "%s/%s/U", case_dir, tname);
-    if ((rc = fio_read_field(path, a.pm, 3, &a.U, err)) != UMP_OK)
+    if ((rc = read_start_field(&a, tname, "p", 1, a.bu.on, &a.p, err)) != UMP_OK ||
+        (rc = read_start_field(&a, tname, "U", 3, 0, &a.U, err)) != UMP_OK ||
+        (rc = settings(&a, &s, err)) != UMP_OK)
         goto done;
-    if ((rc = settings(&a, &s, err)) != UMP_OK)
-        goto done;
+    if (a.fo.ignored[0])
+        printf("--> umppmFoam Warning: function objects not run by umppmFoam (ignored): %s\n\n",
+               a.fo.ignored);
     printf("UMPPM: variant %s, alpha %g, laplacian %s", a.um.variant_star ? "UMPPM*" : "UMPPM",
            a.um.alpha, a.um.laplacian);
     if (strcmp(a.um.laplacian, "CPM") != 0)
@@ -316,7 +496,10 @@ ump_status app_run(const char *case_dir, ump_err *err)
     printf(", PPE solver %s, predictor BiCGSTAB/%s tolerance %g\n\n", a.um.ppe_solver, a.um.pred_pc,
            a.um.pred_tol);
     double tb = wall_seconds();
-    if ((rc = sol_create(a.m, &s, a.U, a.p, &a.S, err)) != UMP_OK ||
+    if (a.bu.on)
+        printf("Boussinesq buoyancy: beta %g, TRef %g, Pr %g (thermal diffusivity nu/Pr = %g); "
+               "energy on the particles (Eq. 37)\n\n", a.tr.beta, a.tr.TRef, a.tr.Pr, s.kappa);
+    if ((rc = sol_create(a.m, &s, a.U, a.bu.on ? a.prgh : a.p, a.T, &a.S, err)) != UMP_OK ||
         (rc = restart_cloud(&a, tname, err)) != UMP_OK)
         goto done;
     printf("Pressure mesh: %ld cells; PPE matrix assembled and factorized once (%.3g s); "
@@ -330,6 +513,9 @@ ump_status app_run(const char *case_dir, ump_err *err)
         rt_set_initial_delta_t(&t, co_max);
     }
     printf("\nStarting time loop\n\n");
+    long step = 0;
+    if ((rc = run_functions(&a, &t, 0, tname, err)) != UMP_OK)
+        goto done;
     while (rt_running(&t)) {
         sol_courant(a.S, t.delta_t, &co_mean, &co_max);
         printf("Courant Number mean: %g max: %g\n", co_mean, co_max);
@@ -347,10 +533,10 @@ ump_status app_run(const char *case_dir, ump_err *err)
             goto done;
         printf("Particles: %zu (added %zu, deleted %zu, left the domain %zu)\n", st.np, st.added,
                st.deleted, st.left);
-        for (int k = 0; k < 2; k++)
-            printf("BiCGSTAB:  Solving for U%c, Initial residual = %g, Final residual = %g, "
-                   "No Iterations %d\n", "xyz"[a.m->ax[k]], st.pred[k].res0, st.pred[k].res,
-                   st.pred[k].iterations);
+        for (int k = 0; k < (a.bu.on ? 3 : 2); k++)
+            printf("BiCGSTAB:  Solving for %s, Initial residual = %g, Final residual = %g, "
+                   "No Iterations %d\n", k == 2 ? "T" : a.m->ax[k] == 0 ? "Ux" : a.m->ax[k] == 1 ? "Uy" : "Uz",
+                   st.pred[k].res0, st.pred[k].res, st.pred[k].iterations);
         if (st.lap_fallbacks || st.mls_fallbacks)
             printf("Fallbacks: %d particle Laplacians (MPS), %d MLS fits (linear/Shepard)\n",
                    st.lap_fallbacks, st.mls_fallbacks);
@@ -362,6 +548,9 @@ ump_status app_run(const char *case_dir, ump_err *err)
                           "reduce deltaT or maxCo", case_dir, t.name);
             goto done;
         }
+        step++;
+        if ((rc = run_functions(&a, &t, step, tname, err)) != UMP_OK)
+            goto done;
         if (t.write_time) {
             if ((rc = write_time(&a, &t, err)) != UMP_OK)
                 goto done;

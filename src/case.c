@@ -139,29 +139,115 @@ done:
     return rc;
 }
 
+/* A dimensioned transport constant: the dimensions, if given, must be
+ * `want` (or all zero); value >= lo. *has = 0 when absent and !required. */
+static ump_status get_transport_constant(const foam_dict *d, const char *key, const double want[7],
+                                         const char *units, double lo, int required, double *v, int *has,
+                                         ump_err *err)
+{
+    *has = 0;
+    const foam_entry *e = foam_dict_find(d, key, 0);
+    if (!e && !required)
+        return UMP_OK;
+    double dims[7];
+    UMP_CALL(foam_get_dimensioned(d, key, v, dims, err));
+    int dimensionless = 1, ok = 1;
+    for (int k = 0; k < 7; k++) {
+        dimensionless &= dims[k] == 0;
+        ok &= dims[k] == want[k];
+    }
+    if (!ok && !dimensionless)
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s must have dimensions [%g %g %g %g %g %g %g] (%s)",
+                        e->file, e->line, key, want[0], want[1], want[2], want[3], want[4], want[5],
+                        want[6], units);
+    if (!(*v >= lo))
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s must be >= %g, found %g", e->file, e->line, key, lo,
+                        *v);
+    *has = 1;
+    return UMP_OK;
+}
+
 ump_status case_read_transport(const char *case_dir, case_transport *t, ump_err *err)
 {
+    static const double d_nu[7] = {0, 2, -1, 0, 0, 0, 0}, d_beta[7] = {0, 0, 0, -1, 0, 0, 0},
+                        d_T[7] = {0, 0, 0, 1, 0, 0, 0}, d_none[7] = {0};
     char path[4096];
     snprintf(path, sizeof path, "%s/constant/transportProperties", case_dir);
     foam_file *f = NULL;
     UMP_CALL(foam_file_read(path, &f, err));
     memset(t, 0, sizeof *t);
-    double dims[7];
-    ump_status rc = foam_get_dimensioned(f->dict, "nu", &t->nu, dims, err);
-    if (rc == UMP_OK) {
-        static const double want[7] = {0, 2, -1, 0, 0, 0, 0};
-        const foam_entry *e = foam_dict_find(f->dict, "nu", 0);
-        int dimensionless = 1, ok = 1;
-        for (int k = 0; k < 7; k++) {
-            dimensionless &= dims[k] == 0;
-            ok &= dims[k] == want[k];
-        }
-        if (!ok && !dimensionless)
-            rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: nu must have dimensions [0 2 -1 0 0 0 0] (m^2/s)",
-                          e->file, e->line);
-        else if (!(t->nu >= 0))
-            rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: nu must be >= 0, found %g", e->file, e->line, t->nu);
-        t->has_nu = 1;
+    const foam_dict *d = f->dict;
+    int has_prt = 0;
+    ump_status rc;
+    if ((rc = get_transport_constant(d, "nu", d_nu, "m^2/s", 0, 1, &t->nu, &t->has_nu, err)) == UMP_OK &&
+        (rc = get_transport_constant(d, "beta", d_beta, "1/K", -INFINITY, 0, &t->beta, &t->has_beta,
+                                     err)) == UMP_OK &&
+        (rc = get_transport_constant(d, "TRef", d_T, "K", -INFINITY, 0, &t->TRef, &t->has_TRef, err)) ==
+            UMP_OK &&
+        (rc = get_transport_constant(d, "Pr", d_none, "dimensionless", 0, 0, &t->Pr, &t->has_Pr, err)) ==
+            UMP_OK &&
+        (rc = get_transport_constant(d, "Prt", d_none, "dimensionless", 0, 0, &t->Prt, &has_prt, err)) ==
+            UMP_OK &&
+        t->has_Pr && !(t->Pr > 0)) {
+        const foam_entry *e = foam_dict_find(d, "Pr", 0);
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: Pr must be positive, found %g", e->file, e->line, t->Pr);
+    }
+    foam_file_free(&f);
+    return rc;
+}
+
+ump_status case_require_boussinesq(const char *case_dir, const case_transport *t, ump_err *err)
+{
+    const char *miss = !t->has_beta ? "beta" : !t->has_TRef ? "TRef" : !t->has_Pr ? "Pr" : NULL;
+    if (miss)
+        return UMP_FAIL(err, UMP_ERR_INPUT,
+                        "%s/constant/transportProperties: keyword '%s' is missing; a buoyant case "
+                        "(constant/g present) needs nu, beta, TRef and Pr as buoyantBoussinesqPimpleFoam",
+                        case_dir, miss);
+    return UMP_OK;
+}
+
+/* constant/g and constant/hRef (uniformDimensionedVectorField and
+ * uniformDimensionedScalarField): their "value". */
+ump_status case_read_buoyancy(const char *case_dir, case_buoyancy *b, ump_err *err)
+{
+    char path[4096];
+    memset(b, 0, sizeof *b);
+    snprintf(path, sizeof path, "%s/constant/g", case_dir);
+    if (!foam_file_exists(path))
+        return UMP_OK;
+    foam_file *f = NULL;
+    UMP_CALL(foam_file_read(path, &f, err));
+    ump_status rc = foam_get_vector(f->dict, "value", b->g, err);
+    foam_file_free(&f);
+    if (rc != UMP_OK)
+        return rc;
+    b->on = 1;
+    snprintf(path, sizeof path, "%s/constant/hRef", case_dir);
+    if (!foam_file_exists(path))
+        return UMP_OK;
+    UMP_CALL(foam_file_read(path, &f, err));
+    rc = foam_get_scalar(f->dict, "value", &b->h_ref, err);
+    b->has_h_ref = rc == UMP_OK;
+    foam_file_free(&f);
+    return rc;
+}
+
+ump_status case_check_laminar(const char *case_dir, ump_err *err)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/constant/turbulenceProperties", case_dir);
+    if (!foam_file_exists(path))
+        return UMP_OK;
+    foam_file *f = NULL;
+    UMP_CALL(foam_file_read(path, &f, err));
+    const char *w = NULL;
+    ump_status rc = foam_get_word(f->dict, "simulationType", &w, err);
+    if (rc == UMP_OK && strcmp(w, "laminar") != 0) {
+        const foam_entry *e = foam_dict_find(f->dict, "simulationType", 0);
+        rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                      "%s:%d: simulationType '%s' is not supported: umppmFoam is a laminar solver "
+                      "(use simulationType laminar;)", e->file, e->line, w);
     }
     foam_file_free(&f);
     return rc;

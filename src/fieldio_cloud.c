@@ -189,6 +189,26 @@ static ump_status parse_positions(const foam_file *f, size_t *n, double **pos, u
     return UMP_OK;
 }
 
+ump_status fio_read_cloud_field(const char *dir, const char *cloud, const char *name, int ncomp, size_t n,
+                                double **v, ump_err *err)
+{
+    char path[4400];
+    foam_file *f = NULL;
+    size_t nv = 0, pos_i = 0;
+    *v = NULL;
+    snprintf(path, sizeof path, "%s/lagrangian/%s/%s", dir, cloud, name);
+    UMP_CALL(foam_file_read(path, &f, err));
+    ump_status rc = foam_tok_scalar_list(f->body, f->nbody, &pos_i, ncomp, v, &nv, name, err);
+    if (rc == UMP_OK && nv != n)
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: %zu values for %zu particles", f->path, nv, n);
+    foam_file_free(&f);
+    if (rc != UMP_OK) {
+        free(*v);
+        *v = NULL;
+    }
+    return rc;
+}
+
 ump_status fio_read_cloud(const char *dir, const char *cloud, size_t *n, double **pos, double **vel,
                           int64_t **id, ump_idx **cell, ump_err *err)
 {
@@ -204,15 +224,8 @@ ump_status fio_read_cloud(const char *dir, const char *cloud, size_t *n, double 
     foam_file_free(&f);
     if (rc != UMP_OK)
         return rc;
-    snprintf(path, sizeof path, "%s/lagrangian/%s/U", dir, cloud);
-    size_t nu = 0, pos_i = 0;
-    if ((rc = foam_file_read(path, &f, err)) != UMP_OK)
-        goto fail;
-    rc = foam_tok_scalar_list(f->body, f->nbody, &pos_i, 3, vel, &nu, "U", err);
-    if (rc == UMP_OK && nu != *n)
-        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: %zu velocities for %zu particles", f->path, nu, *n);
-    foam_file_free(&f);
-    if (rc != UMP_OK)
+    size_t pos_i = 0;
+    if ((rc = fio_read_cloud_field(dir, cloud, "U", 3, *n, vel, err)) != UMP_OK)
         goto fail;
     *id = ump_alloc_array(*n, sizeof **id);
     if (!*id) {

@@ -27,6 +27,16 @@
  *     neighbours) gets the MPS Laplacian for that step (counted in stats).
  *   - Particles that cross a boundary face at r* or r^{n+1} are removed at
  *     the end of the step; the empty-cell refill then repopulates.
+ *   - Buoyant: the energy equation (Eq. 37) uses the predictor's Laplacian
+ *     rows (same particles at r^n, same coefficients a_j) scaled by
+ *     dt kappa instead of dt nu. Temperature boundary particles carry the
+ *     fixedValue; on zeroGradient (adiabatic) and symmetry faces they carry
+ *     T_P + grad T_P . d_t of the owner cell, d_t the tangential part of
+ *     x_f - x_P (the value a zero normal gradient gives, second order on
+ *     smooth fields), so the implicit Laplacian sees no spurious flux there;
+ *     inletOutlet: the inletValue where the last flux entered. T_P (Step 10)
+ *     is the MLS value at the centroid of the particle temperatures after
+ *     the move, before management, so refilled particles get T = T_P.
  */
 #include "umppm/solver.h"
 #include "umppm/lsq.h"
@@ -39,6 +49,7 @@
 #include <string.h>
 
 enum { BU_FIXED = 0, BU_OUTLET, BU_INLETOUTLET, BU_SYMMETRY };
+enum { BT_FIXED = 0, BT_ZEROGRADIENT, BT_INLETOUTLET };
 
 struct sol {
     const mesh2d *m;
@@ -54,17 +65,24 @@ struct sol {
     unsigned char *u_kind;
     double *ub, *vb;           /* prescribed velocity or inletValue */
     unsigned char *p_dir;      /* [nfaces] */
-    double *pf;                /* [nfaces] prescribed face pressure */
+    double *pf;                /* [nfaces] prescribed face pressure (pi) */
+    int need_ref;              /* no fixed-pressure face: pRefCell fixes the level */
+    /* buoyant: temperature boundary conditions per boundary face, the
+     * prescribed p_rgh of fixed-pressure faces, gh at cells and faces */
+    unsigned char *t_kind;
+    double *tb, *prgh_f, *ghc, *ghf;
+    double *Tc, *gtx, *gty;    /* mesh temperature T_P and its LS gradient */
     /* mesh fields */
     double *p, *uc, *vc, *usc, *vsc, *flux, *gflux, *gx, *gy, *div;
     /* per particle workspace */
     size_t wcap;
-    double *x0, *y0, *us, *vs, *rhs_u, *rhs_v;
+    double *x0, *y0, *us, *vs, *rhs_u, *rhs_v, *Ts, *rhs_T;
     ump_idx *cell0;
     unsigned char *keep;
     /* predictor matrix rows */
     ump_idx *rp, *ci;
-    double *cv;
+    double *lv, *cv;           /* Laplacian rows (sum a_j on the diagonal, -a_j
+                                  off it) and the scaled system I + dt nu L */
     size_t rowcap;
     lsolve_mat *A;
     size_t Acap;
@@ -106,8 +124,9 @@ void sol_free(sol **pS)
     lsolve_mat_free(&S->A);
     void *arr[] = {S->u_kind, S->ub, S->vb, S->p_dir, S->pf, S->p, S->uc, S->vc, S->usc, S->vsc,
                    S->flux, S->gflux, S->gx, S->gy, S->div, S->x0, S->y0, S->us, S->vs, S->rhs_u,
-                   S->rhs_v, S->cell0, S->keep, S->rp, S->ci, S->cv, S->nb, S->h, S->k, S->a,
-                   S->c0, S->cx, S->cy, S->vals};
+                   S->rhs_v, S->Ts, S->rhs_T, S->cell0, S->keep, S->rp, S->ci, S->lv, S->cv, S->nb,
+                   S->h, S->k, S->a, S->c0, S->cx, S->cy, S->vals, S->t_kind, S->tb, S->prgh_f,
+                   S->ghc, S->ghf, S->Tc, S->gtx, S->gty};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
     free(S);
@@ -120,8 +139,8 @@ static ump_status grow_particle_work(sol *S, size_t n, ump_err *err)
     if (n <= S->wcap)
         return UMP_OK;
     size_t c = n > 2 * S->wcap ? n : 2 * S->wcap;
-    void **arr[] = {(void **)&S->x0, (void **)&S->y0, (void **)&S->us, (void **)&S->vs,
-                    (void **)&S->rhs_u, (void **)&S->rhs_v};
+    void **arr[] = {(void **)&S->x0,    (void **)&S->y0,    (void **)&S->us, (void **)&S->vs,
+                    (void **)&S->rhs_u, (void **)&S->rhs_v, (void **)&S->Ts, (void **)&S->rhs_T};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
         void *q = ump_realloc_array(*arr[i], c, sizeof(double));
         if (!q)
@@ -187,6 +206,19 @@ static ump_status gather_offsets(sol *S, size_t i, size_t *n, ump_err *err)
     return UMP_OK;
 }
 
+/* The temperature a zero normal gradient gives on boundary face f:
+ * T_P + grad T_P . d_t, d_t = (x_f - x_P) minus its normal part. */
+static double zero_gradient_T(const sol *S, ump_idx f)
+{
+    const mesh2d *m = S->m;
+    ump_idx o = m->owner[f];
+    double dx = m->fx[f] - m->cx[o], dy = m->fy[f] - m->cy[o];
+    double dn = dx * m->nx[f] + dy * m->ny[f];
+    dx -= dn * m->nx[f];
+    dy -= dn * m->ny[f];
+    return S->Tc[o] + S->gtx[o] * dx + S->gty[o] * dy;
+}
+
 /* Boundary particle values for this step (see the choices at the top). */
 static void set_boundary_particles(sol *S)
 {
@@ -216,6 +248,20 @@ static void set_boundary_particles(sol *S)
         }
         S->bp.u[b] = u;
         S->bp.v[b] = v;
+    }
+    if (!S->set.buoyant)
+        return;
+    lsq_gradient(S->g, S->Tc, S->gtx, S->gty);
+    for (ump_idx b = 0; b < S->bp.n; b++) {
+        ump_idx f = S->bp.face[b];
+        double T = S->tb[b];
+        if (S->t_kind[b] == BT_ZEROGRADIENT || (S->t_kind[b] == BT_INLETOUTLET && S->flux[f] >= 0))
+            T = zero_gradient_T(S, f);
+        S->bp.T[b] = T;
+        /* fixed p_rgh: pi = p_rgh - beta (T_f - TRef) gh_f (the buoyant p_rgh
+         * relation of solver.h) */
+        if (S->p_dir[f])
+            S->pf[f] = S->prgh_f[f] - S->set.beta * (T - S->set.t_ref) * S->ghf[f];
     }
 }
 
@@ -262,6 +308,8 @@ static ump_status read_bcs(sol *S, const fld_field *U, const fld_field *pf, ump_
             case FLD_BC_FIXEDVALUE:
                 S->p_dir[f] = 1;
                 S->pf[f] = bpp->value[i];
+                if (S->prgh_f)
+                    S->prgh_f[f] = bpp->value[i];
                 break;
             case FLD_BC_ZEROGRADIENT:
             case FLD_BC_FIXEDFLUXPRESSURE:
@@ -284,8 +332,46 @@ static ump_status read_bcs(sol *S, const fld_field *U, const fld_field *pf, ump_
     return UMP_OK;
 }
 
+/* Temperature boundary conditions (see the choices at the top). */
+static ump_status read_t_bcs(sol *S, const fld_field *T, ump_err *err)
+{
+    const mesh2d *m = S->m;
+    const pmesh *pm = m->pm;
+    for (int p = 0; p < pm->npatches; p++) {
+        const pmesh_patch *pp = &pm->patch[p];
+        const fld_patch *bt = &T->patch[p];
+        for (ump_idx i = 0; i < pp->n; i++) {
+            ump_idx f = m->pmface_to_face[pp->start + i];
+            if (f < m->ninternal)
+                continue;
+            ump_idx b = f - m->ninternal;
+            switch (bt->type) {
+            case FLD_BC_FIXEDVALUE:
+                S->t_kind[b] = BT_FIXED;
+                S->tb[b] = bt->value[i];
+                break;
+            case FLD_BC_ZEROGRADIENT:
+            case FLD_BC_SYMMETRYPLANE:
+            case FLD_BC_SYMMETRY:
+                S->t_kind[b] = BT_ZEROGRADIENT;
+                break;
+            case FLD_BC_INLETOUTLET:
+                S->t_kind[b] = BT_INLETOUTLET;
+                S->tb[b] = bt->aux[i];
+                break;
+            default:
+                return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                                "T: boundary condition '%s' on patch '%s' is not supported for temperature "
+                                "(fixedValue, zeroGradient, symmetry, symmetryPlane, inletOutlet)",
+                                fld_bc_name(bt->type), pp->name);
+            }
+        }
+    }
+    return UMP_OK;
+}
+
 ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U, const fld_field *pfld,
-                      sol **out, ump_err *err)
+                      const fld_field *T, sol **out, ump_err *err)
 {
     *out = NULL;
     sol *S = ump_alloc_array(1, sizeof *S);
@@ -308,6 +394,34 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
         !(S->vb = ump_alloc_array((size_t)nb, sizeof(double))) ||
         !(S->A = ump_alloc_array(1, sizeof *S->A)))
         goto nomem;
+    if (s->buoyant) {
+        if (!T) {
+            rc = UMP_FAIL(err, UMP_ERR_INPUT, "solver: a buoyant case needs the temperature field T");
+            goto fail;
+        }
+        double **carr[] = {&S->Tc, &S->gtx, &S->gty, &S->ghc};
+        for (size_t i = 0; i < sizeof carr / sizeof carr[0]; i++)
+            if (!(*carr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
+                goto nomem;
+        if (!(S->ghf = ump_alloc_array((size_t)nf, sizeof(double))) ||
+            !(S->prgh_f = ump_alloc_array((size_t)nf, sizeof(double))) ||
+            !(S->t_kind = ump_alloc_array((size_t)nb, 1)) ||
+            !(S->tb = ump_alloc_array((size_t)nb, sizeof(double))))
+            goto nomem;
+        /* gh = g . x - ghRef with the 3-D cell and face centres (gh.H) */
+        double X[3];
+        for (ump_idx c = 0; c < nc; c++) {
+            mesh_to3d(m, m->cx[c], m->cy[c], X);
+            S->ghc[c] = s->g[0] * X[0] + s->g[1] * X[1] + s->g[2] * X[2] - s->gh_ref;
+            S->Tc[c] = T->internal[c];
+        }
+        for (ump_idx f = 0; f < nf; f++) {
+            mesh_to3d(m, m->fx[f], m->fy[f], X);
+            S->ghf[f] = s->g[0] * X[0] + s->g[1] * X[1] + s->g[2] * X[2] - s->gh_ref;
+        }
+        if ((rc = read_t_bcs(S, T, err)) != UMP_OK)
+            goto fail;
+    }
     for (ump_idx c = 0; c < nc; c++) {
         S->uc[c] = U->internal[3 * (size_t)c + (size_t)m->ax[0]];
         S->vc[c] = U->internal[3 * (size_t)c + (size_t)m->ax[1]];
@@ -315,6 +429,12 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     }
     if ((rc = read_bcs(S, U, pfld, err)) != UMP_OK)
         goto fail;
+    S->need_ref = 1;
+    for (ump_idx f = 0; f < nf; f++)
+        S->need_ref &= !S->p_dir[f];
+    if (s->buoyant) /* the initial p_rgh as pi (solver.h) */
+        for (ump_idx c = 0; c < nc; c++)
+            S->p[c] -= s->beta * (S->Tc[c] - s->t_ref) * S->ghc[c];
     /* Step 1-4: mesh-only work, once */
     ppe_opts po = {s->ppe_solver, s->p_ref_cell, s->p_ref_value};
     if (s->p_ref_cell < 0 || s->p_ref_cell >= nc) {
@@ -326,7 +446,7 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
         (rc = ppe_create(m, S->g, S->p_dir, &po, &S->pe, err)) != UMP_OK ||
         (rc = part_boundary_create(&S->bp, m, err)) != UMP_OK ||
         (rc = part_create((size_t)nc * 2, &S->P, err)) != UMP_OK ||
-        (rc = part_seed_centroids(S->P, m, S->uc, S->vc, NULL, err)) != UMP_OK ||
+        (rc = part_seed_centroids(S->P, m, S->uc, S->vc, S->Tc, err)) != UMP_OK ||
         (rc = part_bins_build(&S->bins, m, S->P, err)) != UMP_OK ||
         (rc = grow_particle_work(S, S->P->n, err)) != UMP_OK)
         goto fail;
@@ -363,8 +483,8 @@ fail:
 }
 
 ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y, const double *u,
-                             const double *v, const int64_t *id, const ump_idx *hint, size_t *dropped,
-                             ump_err *err)
+                             const double *v, const double *T, const int64_t *id, const ump_idx *hint,
+                             size_t *dropped, ump_err *err)
 {
     part_set *P = S->P;
     P->n = 0;
@@ -380,7 +500,8 @@ ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y,
             continue;
         }
         size_t idx;
-        UMP_CALL(part_add(P, px, py, u[i], v[i], 0.0, cell, &idx, err));
+        double Ti = T ? T[i] : S->Tc ? S->Tc[cell] : 0.0;
+        UMP_CALL(part_add(P, px, py, u[i], v[i], Ti, cell, &idx, err));
         if (id) {
             P->id[idx] = id[i];
             if (id[i] > maxid)
@@ -398,13 +519,29 @@ void sol_set_pressure(sol *S, const double *p)
     memcpy(S->p, p, (size_t)S->m->ncells * sizeof *S->p);
 }
 
-/* Step 6: implicit predictor (Eq. 14) with the particle Laplacian (Eq. 16). */
+/* The system I + dts L of the stored Laplacian rows (diagonal first in
+ * each row) into S->A. */
+static ump_status scaled_system(sol *S, size_t n, double dts, ump_err *err)
+{
+    size_t nz = (size_t)S->rp[n];
+    for (size_t k = 0; k < nz; k++)
+        S->cv[k] = dts * S->lv[k];
+    for (size_t i = 0; i < n; i++)
+        S->cv[S->rp[i]] += 1.0;
+    return lsolve_mat_from_csr(S->A, &S->Acap, (ump_idx)n, S->rp, S->ci, S->cv, err);
+}
+
+/* Step 6: implicit predictor (Eq. 14) with the particle Laplacian (Eq. 16),
+ * the Boussinesq source (Eq. 4) and, buoyant, the energy equation (Eq. 37). */
 static ump_status predictor(sol *S, double dt, sol_stats *st, ump_err *err)
 {
     const mesh2d *m = S->m;
     part_set *P = S->P;
     size_t n = P->n, nz = 0;
-    double dnu = dt * S->set.nu;
+    const sol_settings *set = &S->set;
+    int buoyant = set->buoyant;
+    double dnu = dt * set->nu, dkap = dt * set->kappa;
+    double gx = buoyant ? set->g[m->ax[0]] : 0, gy = buoyant ? set->g[m->ax[1]] : 0;
     lap_params mps = {LAP_MPS, 3.1};
     S->rp[0] = 0;
     for (size_t i = 0; i < n; i++) {
@@ -413,7 +550,7 @@ static ump_status predictor(sol *S, double dt, sol_stats *st, ump_err *err)
         UMP_CALL(gather_offsets(S, i, &cnt, err));
         double l0 = sqrt(m->area[c]);
         ump_err lerr;
-        if (lap_coeffs(&S->set.lap, S->h, S->k, (int)cnt, l0, S->a, &lerr) != UMP_OK) {
+        if (lap_coeffs(&set->lap, S->h, S->k, (int)cnt, l0, S->a, &lerr) != UMP_OK) {
             st->lap_fallbacks++;
             UMP_CALL(lap_coeffs(&mps, S->h, S->k, (int)cnt, l0, S->a, err));
         }
@@ -424,33 +561,46 @@ static ump_status predictor(sol *S, double dt, sol_stats *st, ump_err *err)
             if (!ci)
                 return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor: out of memory");
             S->ci = ci;
+            double *lv = ump_realloc_array(S->lv, ncap, sizeof *lv);
+            if (!lv)
+                return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor: out of memory");
+            S->lv = lv;
             double *cv = ump_realloc_array(S->cv, ncap, sizeof *cv);
             if (!cv)
                 return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor: out of memory");
             S->cv = cv;
             S->rowcap = ncap;
         }
-        /* (1 + dt nu sum a_j) u*_i - dt nu sum_fluid a_j u*_j = u^n_i + dt nu sum_bnd a_j u_b */
-        double diag = 1.0, ru = P->u[i], rv = P->v[i];
+        /* Laplacian row: L phi_i = sum_j a_j (phi_j - phi_i); boundary
+         * particles are known values, moved to the right-hand side:
+         * (1 + dt nu sum a_j) u*_i - dt nu sum_fluid a_j u*_j
+         *     = u^n_i + dt nu sum_bnd a_j u_b + dt S_i        (Eq. 14)
+         * and likewise T with dt kappa                         (Eq. 37) */
+        double suma = 0, bu = 0, bv = 0, bT = 0;
         size_t dpos = nz++;
         for (size_t j = 0; j < cnt; j++) {
-            double w = dnu * S->a[j];
-            diag += w;
+            double a = S->a[j];
+            suma += a;
             if (S->nb[j].is_boundary) {
-                ru += w * S->bp.u[S->nb[j].index];
-                rv += w * S->bp.v[S->nb[j].index];
+                size_t q = S->nb[j].index;
+                bu += a * S->bp.u[q];
+                bv += a * S->bp.v[q];
+                bT += a * S->bp.T[q];
             } else {
                 S->ci[nz] = (ump_idx)S->nb[j].index;
-                S->cv[nz++] = -w;
+                S->lv[nz++] = -a;
             }
         }
         S->ci[dpos] = (ump_idx)i;
-        S->cv[dpos] = diag;
+        S->lv[dpos] = suma;
         S->rp[i + 1] = (ump_idx)nz;
-        S->rhs_u[i] = ru;
-        S->rhs_v[i] = rv;
+        /* Boussinesq source per unit mass, -beta (T^n - TRef) g (Eq. 4) */
+        double b = buoyant ? -set->beta * (P->T[i] - set->t_ref) : 0;
+        S->rhs_u[i] = P->u[i] + dnu * bu + dt * b * gx;
+        S->rhs_v[i] = P->v[i] + dnu * bv + dt * b * gy;
+        S->rhs_T[i] = P->T[i] + dkap * bT;
     }
-    UMP_CALL(lsolve_mat_from_csr(S->A, &S->Acap, (ump_idx)n, S->rp, S->ci, S->cv, err));
+    UMP_CALL(scaled_system(S, n, dnu, err));
     if (!S->kry || S->kry_n < (ump_idx)n) {
         lsolve_krylov_free(&S->kry);
         ump_idx kn = (ump_idx)(n + n / 2 + 16);
@@ -459,19 +609,39 @@ static ump_status predictor(sol *S, double dt, sol_stats *st, ump_err *err)
     }
     memcpy(S->us, P->u, n * sizeof *S->us); /* warm start from u^n */
     memcpy(S->vs, P->v, n * sizeof *S->vs);
-    UMP_CALL(lsolve_bicgstab(S->kry, S->A, S->set.pred_pc, S->rhs_u, S->us, S->set.pred_tol,
-                             S->set.pred_maxit, &st->pred[0], err));
-    UMP_CALL(lsolve_bicgstab_again(S->kry, S->A, S->set.pred_pc, S->rhs_v, S->vs, S->set.pred_tol,
-                             S->set.pred_maxit, &st->pred[1], err));
-    if (st->pred[0].converged < 0 || st->pred[1].converged < 0)
-        return UMP_FAIL(err, UMP_ERR_SINGULAR, "predictor: BiCGSTAB broke down (residual %g)",
-                        fmax(st->pred[0].res, st->pred[1].res));
+    UMP_CALL(lsolve_bicgstab(S->kry, S->A, set->pred_pc, S->rhs_u, S->us, set->pred_tol, set->pred_maxit,
+                             &st->pred[0], err));
+    UMP_CALL(lsolve_bicgstab_again(S->kry, S->A, set->pred_pc, S->rhs_v, S->vs, set->pred_tol,
+                                   set->pred_maxit, &st->pred[1], err));
+    int ns = 2;
+    if (buoyant) {
+        /* Eq. 37: the same rows with dt kappa; T^n is the warm start */
+        memcpy(S->Ts, P->T, n * sizeof *S->Ts);
+        if (dkap == dnu) {
+            UMP_CALL(lsolve_bicgstab_again(S->kry, S->A, set->pred_pc, S->rhs_T, S->Ts, set->pred_tol,
+                                           set->pred_maxit, &st->pred[2], err));
+        } else {
+            UMP_CALL(scaled_system(S, n, dkap, err));
+            UMP_CALL(lsolve_bicgstab(S->kry, S->A, set->pred_pc, S->rhs_T, S->Ts, set->pred_tol,
+                                     set->pred_maxit, &st->pred[2], err));
+        }
+        ns = 3;
+    }
+    for (int k = 0; k < ns; k++)
+        if (st->pred[k].converged < 0)
+            return UMP_FAIL(err, UMP_ERR_SINGULAR, "predictor: BiCGSTAB broke down solving for %s "
+                            "(residual %g)", k == 2 ? "T" : k ? "v" : "u", st->pred[k].res);
+    if (buoyant)
+        memcpy(P->T, S->Ts, n * sizeof *P->T);
     return UMP_OK;
 }
 
-/* MLS value (and optionally gradient) of particle velocities at a point. */
-static ump_status mls_velocity(sol *S, ump_idx c, double x, double y, double mdx, double mdy,
-                               ump_idx skip_face, double *u, double *v, sol_stats *st, ump_err *err)
+/* MLS value (Eq. 32) at (x, y) in cell c of nv particle quantities:
+ * fluid[k] [particles] and bnd[k] [boundary particles] give quantity k,
+ * out[k] its value; skip_face's own boundary particle is left out (-1: none). */
+static ump_status mls_particles(sol *S, ump_idx c, double x, double y, double mdx, double mdy,
+                                ump_idx skip_face, int nv, const double *const *fluid,
+                                const double *const *bnd, double *out, sol_stats *st, ump_err *err)
 {
     size_t cnt;
     UMP_CALL(gather(S, c, x, y, SIZE_MAX, &cnt, err));
@@ -489,16 +659,26 @@ static ump_status mls_velocity(sol *S, ump_idx c, double x, double y, double mdx
     mls_basis b = mls_weights(S->h, S->k, n, mdx, mdy, S->c0, NULL, NULL, &info);
     if (b != MLS_QUADRATIC)
         st->mls_fallbacks++;
-    double su = 0, sv = 0;
-    for (int j = 0; j < n; j++) {
-        const part_nbr *q = &S->nb[j];
-        double qu = q->is_boundary ? S->bp.u[q->index] : S->us[q->index];
-        double qv = q->is_boundary ? S->bp.v[q->index] : S->vs[q->index];
-        su += S->c0[j] * qu;
-        sv += S->c0[j] * qv;
+    for (int k = 0; k < nv; k++) {
+        double sum = 0;
+        for (int j = 0; j < n; j++) {
+            const part_nbr *q = &S->nb[j];
+            sum += S->c0[j] * (q->is_boundary ? bnd[k][q->index] : fluid[k][q->index]);
+        }
+        out[k] = sum;
     }
-    *u = su;
-    *v = sv;
+    return UMP_OK;
+}
+
+/* MLS u* (Step 8) at (x, y) in cell c. */
+static ump_status mls_velocity(sol *S, ump_idx c, double x, double y, double mdx, double mdy,
+                               ump_idx skip_face, double *u, double *v, sol_stats *st, ump_err *err)
+{
+    const double *fluid[2] = {S->us, S->vs}, *bnd[2] = {S->bp.u, S->bp.v};
+    double uv[2];
+    UMP_CALL(mls_particles(S, c, x, y, mdx, mdy, skip_face, 2, fluid, bnd, uv, st, err));
+    *u = uv[0];
+    *v = uv[1];
     return UMP_OK;
 }
 
@@ -621,8 +801,15 @@ ump_status sol_step(sol *S, double dt, sol_stats *st, ump_err *err)
     part_compact(P, S->keep);
     st->left = before - P->n;
     UMP_CALL(part_bins_build(&S->bins, m, P, err));
+    if (S->set.buoyant) {
+        /* Step 10: mesh temperature T_P, MLS of the particle temperatures */
+        const double *fluid[1] = {P->T}, *bnd[1] = {S->bp.T};
+        for (ump_idx c = 0; c < m->ncells; c++)
+            UMP_CALL(mls_particles(S, c, m->cx[c], m->cy[c], m->dx[c], m->dy[c], -1, 1, fluid, bnd,
+                                   &S->Tc[c], st, err));
+    }
     part_manage_stats ms;
-    UMP_CALL(part_manage(P, &S->bins, m, S->set.variant, S->set.alpha, S->uc, S->vc, NULL, &ms, err));
+    UMP_CALL(part_manage(P, &S->bins, m, S->set.variant, S->set.alpha, S->uc, S->vc, S->Tc, &ms, err));
     st->added = ms.added;
     st->deleted = ms.deleted_close + ms.deleted_extra;
     st->np = P->n;
@@ -725,4 +912,72 @@ void sol_face_values(const sol *S, ump_idx f, double *u, double *v, double *p)
     }
     if (S->p_dir[f])
         *p = S->pf[f];
+}
+
+const double *sol_cell_T(const sol *S) { return S->Tc; }
+
+double sol_face_T(const sol *S, ump_idx f)
+{
+    if (!S->set.buoyant || f < S->m->ninternal)
+        return S->Tc ? S->Tc[S->m->owner[f]] : 0.0;
+    return S->bp.T[f - S->m->ninternal];
+}
+
+void sol_buoyant_pressure(const sol *S, ump_idx c, ump_idx f, double *p, double *p_rgh)
+{
+    const sol_settings *s = &S->set;
+    double shift = 0;
+    if (S->need_ref) { /* pEqn.H: p += pRefValue - p[pRefCell] */
+        ump_idx r = s->p_ref_cell;
+        shift = s->p_ref_value - (S->p[r] + S->ghc[r]);
+    }
+    double pi, gh, T;
+    if (f >= 0) {
+        double u, v;
+        sol_face_values(S, f, &u, &v, &pi);
+        gh = S->ghf[f];
+        T = sol_face_T(S, f);
+    } else {
+        pi = S->p[c];
+        gh = S->ghc[c];
+        T = S->Tc[c];
+    }
+    double rhok = 1.0 - s->beta * (T - s->t_ref);
+    *p = pi + gh + shift;
+    *p_rgh = *p - rhok * gh;
+}
+
+ump_status sol_wall_dTdn(sol *S, ump_idx f, sol_grad_method how, double *dTdn, ump_err *err)
+{
+    const mesh2d *m = S->m;
+    if (!S->set.buoyant || f < m->ninternal || f >= m->nfaces)
+        return UMP_FAIL(err, UMP_ERR_INPUT, "wall heat flux: face %ld is not a boundary face of a buoyant case",
+                        (long)f);
+    ump_idx o = m->owner[f];
+    double nx = m->nx[f], ny = m->ny[f];
+    if (how == SOL_GRAD_SNGRAD) {
+        double d = (m->fx[f] - m->cx[o]) * nx + (m->fy[f] - m->cy[o]) * ny;
+        *dTdn = (sol_face_T(S, f) - S->Tc[o]) / d;
+        return UMP_OK;
+    }
+    /* quadratic MLS derivative (Eqs. 33-34) at the face centre over the
+     * fluid and boundary particles of the owner's N2 stencil */
+    size_t cnt;
+    UMP_CALL(gather(S, o, m->fx[f], m->fy[f], SIZE_MAX, &cnt, err));
+    int n = 0;
+    for (size_t j = 0; j < cnt && n < MLS_MAX_SAMPLES; j++) {
+        S->h[n] = S->nb[j].dx;
+        S->k[n] = S->nb[j].dy;
+        n++;
+    }
+    mls_info info;
+    mls_weights(S->h, S->k, n, m->dx[o], m->dy[o], S->c0, S->cx, S->cy, &info);
+    double g = 0;
+    for (int j = 0; j < n; j++) {
+        const part_nbr *q = &S->nb[j];
+        double T = q->is_boundary ? S->bp.T[q->index] : S->P->T[q->index];
+        g += (S->cx[j] * nx + S->cy[j] * ny) * T;
+    }
+    *dTdn = g;
+    return UMP_OK;
 }

@@ -41,7 +41,22 @@ typedef struct case_control {
 typedef struct case_transport {
     double nu;                   /* kinematic viscosity [m^2/s] */
     int has_nu;
+    /* Boussinesq constants of buoyantBoussinesqPimpleFoam (optional here;
+     * case_require_boussinesq checks them for a buoyant case) */
+    double beta;                 /* thermal expansion coefficient [1/K] */
+    double TRef;                 /* reference temperature [K] */
+    double Pr, Prt;              /* laminar and turbulent Prandtl numbers */
+    int has_beta, has_TRef, has_Pr;
 } case_transport;
+
+/* Gravity of a buoyant case: constant/g (uniformDimensionedVectorField) and
+ * the optional constant/hRef (uniformDimensionedScalarField, default 0). */
+typedef struct case_buoyancy {
+    int on;                      /* constant/g exists */
+    double g[3];
+    double h_ref;
+    int has_h_ref;
+} case_buoyancy;
 
 typedef struct case_solution {
     long p_ref_cell;             /* PISO/PIMPLE/SIMPLE pRefCell, default 0 */
@@ -77,8 +92,17 @@ ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err);
  * startTime unless latestTime/firstTime, writeInterval) are errors naming
  * file and line; unknown enumeration words are errors listing the valid ones. */
 ump_status case_read_control(const char *case_dir, case_control *c, ump_err *err);
-/* Read <case>/constant/transportProperties (nu with or without dimensions). */
+/* Read <case>/constant/transportProperties: nu (required), beta, TRef, Pr,
+ * Prt (optional), each with or without dimensions; wrong dimensions or
+ * values out of range are errors naming file and line. */
 ump_status case_read_transport(const char *case_dir, case_transport *t, ump_err *err);
+/* Error naming the first of beta, TRef, Pr missing from t. */
+ump_status case_require_boussinesq(const char *case_dir, const case_transport *t, ump_err *err);
+/* constant/g (absent: b->on = 0) and constant/hRef. */
+ump_status case_read_buoyancy(const char *case_dir, case_buoyancy *b, ump_err *err);
+/* constant/turbulenceProperties: absent, or simulationType laminar; any
+ * other model is refused by name. */
+ump_status case_check_laminar(const char *case_dir, ump_err *err);
 /* Read <case>/system/fvSolution: pRefCell/pRefValue/pRefPoint from the PISO,
  * PIMPLE or SIMPLE sub-dictionary (first present). Missing file is an error. */
 ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *err);

@@ -114,5 +114,9 @@ ump_status fio_write_cloud_field(const char *dir, const char *location, const ch
  * all caller-freed. */
 ump_status fio_read_cloud(const char *dir, const char *cloud, size_t *n, double **pos, double **vel,
                           int64_t **id, ump_idx **cell, ump_err *err);
+/* One particle field <dir>/lagrangian/<cloud>/<name> of ncomp values per
+ * particle, which must hold n of them: *v [n*ncomp], caller-freed. */
+ump_status fio_read_cloud_field(const char *dir, const char *cloud, const char *name, int ncomp, size_t n,
+                                double **v, ump_err *err);
 
 #endif

@@ -19,6 +19,16 @@
  *      r^{n+1} = r^n + dt u^{n+1} (Eq. 7); mesh velocity Eq. 36;
  *   11 particle management (UMPPM or UMPPM*), removal of particles that
  *      left through outlets or crossed walls.
+ *
+ * Buoyant (settings.buoyant): the Boussinesq source -beta (T - TRef) g
+ * (Eq. 4, per unit mass, T^n of the particle) enters the predictor and the
+ * particle temperature is advanced implicitly with the same particle
+ * Laplacian and thermal diffusivity kappa = nu/Pr (Eq. 37); the mesh
+ * temperature T_P is the MLS value of the particle temperatures at the
+ * centroid (Step 10). The pressure solved for is then pi with
+ *   Du/Dt = -grad pi - beta (T - TRef) g + nu lap u,
+ * i.e. pi = p - gh in buoyantBoussinesqPimpleFoam's terms (gh = g.x - ghRef,
+ * rhok = 1 - beta (T - TRef)): p = pi + gh, p_rgh = p - rhok gh.
  */
 #ifndef UMPPM_SOLVER_H
 #define UMPPM_SOLVER_H
@@ -40,6 +50,12 @@ typedef struct sol_settings {
     int pred_maxit;          /* default 500 */
     ump_idx p_ref_cell;      /* pRefCell, used without pressure boundaries */
     double p_ref_value;
+    /* Boussinesq buoyancy and energy (Eqs. 3, 4, 37); 0: isothermal */
+    int buoyant;
+    double g[3];             /* gravity in the polyMesh's 3-D axes */
+    double gh_ref;           /* ghRef = -|g| hRef (OpenFOAM's readhRef.H) */
+    double beta, t_ref;      /* expansion coefficient [1/K], TRef [K] */
+    double kappa;            /* thermal diffusivity nu/Pr [m^2/s] */
 } sol_settings;
 
 void sol_default_settings(sol_settings *s);
@@ -48,7 +64,7 @@ typedef struct sol_stats {
     double co_mean, co_max;      /* Courant number of the new mesh velocity */
     size_t np;                   /* fluid particles after the step */
     size_t added, deleted, left; /* management and boundary removals */
-    lsolve_stats pred[2];        /* predictor solves (u, v) */
+    lsolve_stats pred[3];        /* predictor solves (u, v; T if buoyant) */
     int lap_fallbacks;           /* particles whose CPM matrix was singular */
     int mls_fallbacks;           /* MLS fits that fell back to linear/Shepard */
     double cont_local, cont_global, cont_max; /* continuity after correction:
@@ -60,19 +76,24 @@ typedef struct sol sol; /* opaque */
 
 /* Build the solver: LS gradient and PPE (assembled and factorized once),
  * boundary particles, and one fluid particle per centroid with the cell
- * values of U. U and p give the boundary conditions (types and values).
- * mesh, U and p are borrowed for the solver's lifetime. */
+ * values of U (and T). U and p give the boundary conditions (types and
+ * values); for a buoyant case p is p_rgh (its fixedValue faces become
+ * pi = p_rgh - beta (T - TRef) gh each step) and T (required then; NULL
+ * otherwise) gives the temperature: fixedValue, zeroGradient, symmetry,
+ * symmetryPlane or inletOutlet. mesh, U, p and T are borrowed for the
+ * solver's lifetime. */
 ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U, const fld_field *p,
-                      sol **out, ump_err *err);
+                      const fld_field *T, sol **out, ump_err *err);
 void sol_free(sol **S);
 
 /* Replace the particles (restart from a cloud): positions and velocities of
- * n particles; each is located by a walk starting at its hint cell [n]
- * (the cloud's celli; NULL or -1: cell 0), so a restart costs O(N) when the
- * hints are right; particles outside the mesh are dropped (*dropped). */
+ * n particles (temperatures T [n], or NULL: the cell temperature); each is
+ * located by a walk starting at its hint cell [n] (the cloud's celli; NULL
+ * or -1: cell 0), so a restart costs O(N) when the hints are right;
+ * particles outside the mesh are dropped (*dropped). */
 ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y, const double *u,
-                             const double *v, const int64_t *id, const ump_idx *hint, size_t *dropped,
-                             ump_err *err);
+                             const double *v, const double *T, const int64_t *id, const ump_idx *hint,
+                             size_t *dropped, ump_err *err);
 /* Set the cell pressure (restart) before the first step. */
 void sol_set_pressure(sol *S, const double *p);
 
@@ -91,6 +112,26 @@ const double *sol_cell_p(const sol *S);
 /* Boundary-face values for writing: velocity and pressure on 2-D face f
  * (f >= ninternal). */
 void sol_face_values(const sol *S, ump_idx f, double *u, double *v, double *p);
+
+/* Buoyant only. Cell temperature T_P [ncells] (NULL if isothermal). */
+const double *sol_cell_T(const sol *S);
+/* Temperature on boundary face f: the fixed value, or the zero-gradient
+ * extrapolation T_P + grad T_P . d_t (d_t the tangential part of the
+ * centroid-to-face vector) used for its boundary particle. */
+double sol_face_T(const sol *S, ump_idx f);
+/* buoyantBoussinesqPimpleFoam's p and p_rgh at cell c (f < 0) or on
+ * boundary face f: p = pi + gh, p_rgh = p - rhok gh; without fixed-pressure
+ * faces p is shifted so that p[pRefCell] = pRefValue (its pEqn.H). */
+void sol_buoyant_pressure(const sol *S, ump_idx c, ump_idx f, double *p, double *p_rgh);
+
+/* Wall-normal temperature gradient on boundary face f, along the outward
+ * normal (into the wall): SOL_GRAD_SNGRAD (T_f - T_P) / (n . (x_f - x_P)),
+ * as OpenFOAM's snGrad without correction; SOL_GRAD_MLS the quadratic MLS
+ * derivative (Eqs. 33-34) of the particle temperatures, boundary particles
+ * included, at the face centre. Local heat flux into the fluid
+ * q = k dT/dn (Eq. 43). */
+typedef enum { SOL_GRAD_MLS, SOL_GRAD_SNGRAD } sol_grad_method;
+ump_status sol_wall_dTdn(sol *S, ump_idx f, sol_grad_method how, double *dTdn, ump_err *err);
 const part_set *sol_particles(const sol *S);
 /* Particle-distribution quality of seed 001 for every fluid particle:
  * uN [2n] the artificial velocity of PS (Eq. 13), tau [3n] the effective

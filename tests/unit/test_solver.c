@@ -47,7 +47,7 @@ static sol *make_solver(const mesh2d *m, const fld_field *U, const fld_field *p,
     s.nu = nu;
     sol *S = NULL;
     ump_err err;
-    if (sol_create(m, &s, U, p, &S, &err) != UMP_OK)
+    if (sol_create(m, &s, U, p, NULL, &S, &err) != UMP_OK)
         fail_msg("%s", err.msg);
     return S;
 }
@@ -181,7 +181,7 @@ static void test_refused(void **state)
     fld_bc_type tp[4] = {FLD_BC_ZEROGRADIENT, FLD_BC_FIXEDVALUE, FLD_BC_ZEROGRADIENT, FLD_BC_ZEROGRADIENT};
     fld_field *U = NULL, *p = NULL;
     make_fields(pm, m, tu, tp, (double[4]){0, 1, 0, 0}, &U, &p);
-    assert_int_equal(sol_create(m, &s, U, p, &S, &err), UMP_ERR_INPUT);
+    assert_int_equal(sol_create(m, &s, U, p, NULL, &S, &err), UMP_ERR_INPUT);
     assert_non_null(strstr(err.msg, "'right'"));
     assert_null(S);
     fld_free(&U);
@@ -190,7 +190,7 @@ static void test_refused(void **state)
     tu[1] = FLD_BC_FIXEDFLUXPRESSURE;
     tp[1] = FLD_BC_ZEROGRADIENT;
     make_fields(pm, m, tu, tp, NULL, &U, &p);
-    assert_int_equal(sol_create(m, &s, U, p, &S, &err), UMP_ERR_UNSUPPORTED);
+    assert_int_equal(sol_create(m, &s, U, p, NULL, &S, &err), UMP_ERR_UNSUPPORTED);
     assert_non_null(strstr(err.msg, "fixedFluxPressure"));
     assert_non_null(strstr(err.msg, "'right'"));
     fld_free(&U);
