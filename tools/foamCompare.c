@@ -7,8 +7,10 @@
  * The meshes must match (same cells, centroids equal to 1e-9 of the domain
  * size) or the tool exits 2 with "mesh mismatch". For each field it prints
  * the area-weighted L2 (rms) and the L-infinity norm of the difference
- * (vector fields: of |a - b|), and both relative to the rms and max of the
- * second case's field. Exit 0 after a successful comparison, 1 on read
+ * (vector fields: of |a - b|), both relative to the rms and max of the
+ * second case's field, and the L2 relative to that field's range (max - min
+ * of a scalar, max |v| of a vector): the useful scale for a temperature,
+ * whose rms is dominated by its offset. Exit 0 after a successful comparison, 1 on read
  * errors, 2 on mesh mismatch.
  */
 #include "umppm/fieldio.h"
@@ -59,7 +61,8 @@ int main(int argc, char **argv)
     const char *deflt[] = {"U", "p"};
     int nf = argc > 5 ? argc - 5 : 2;
     const char **fields = argc > 5 ? (const char **)argv + 5 : deflt;
-    printf("%-8s %14s %14s %12s %12s\n", "field", "L2(diff)", "Linf(diff)", "L2 rel", "Linf rel");
+    printf("%-8s %14s %14s %12s %12s %12s\n", "field", "L2(diff)", "Linf(diff)", "L2 rel", "Linf rel",
+           "L2/range");
     int rc = 0;
     for (int i = 0; i < nf; i++) {
         char p1[4400], p2[4400];
@@ -82,7 +85,7 @@ int main(int argc, char **argv)
             rc = 1;
             continue;
         }
-        double s2 = 0, smax = 0, r2 = 0, rmax = 0, atot = 0;
+        double s2 = 0, smax = 0, r2 = 0, rmax = 0, atot = 0, bmin = INFINITY, bmax = -INFINITY;
         for (ump_idx c = 0; c < ma->ncells; c++) {
             double d = 0, r = 0;
             for (int k = 0; k < ncomp; k++) {
@@ -97,10 +100,14 @@ int main(int argc, char **argv)
             atot += w;
             smax = fmax(smax, sqrt(d));
             rmax = fmax(rmax, sqrt(r));
+            double bv = ncomp == 1 ? b->internal[c] : sqrt(r);
+            bmin = fmin(bmin, ncomp == 1 ? bv : 0);
+            bmax = fmax(bmax, bv);
         }
         double l2 = sqrt(s2 / atot), lr = sqrt(r2 / atot);
-        printf("%-8s %14.6g %14.6g %12.4g %12.4g\n", fields[i], l2, smax, lr > 0 ? l2 / lr : 0,
-               rmax > 0 ? smax / rmax : 0);
+        double range = bmax - bmin;
+        printf("%-8s %14.6g %14.6g %12.4g %12.4g %12.4g\n", fields[i], l2, smax, lr > 0 ? l2 / lr : 0,
+               rmax > 0 ? smax / rmax : 0, range > 0 ? l2 / range : 0);
         fld_free(&a);
         fld_free(&b);
     }

@@ -229,3 +229,15 @@ kv_get() {
 observed_order() {
     awk -v a="$1" -v b="$2" -v n0="$3" -v n1="$4" 'BEGIN { printf "%.3f", log(a / b) / log(n1 / n0) }'
 }
+
+# field_values FILE: the internalField entries of an ascii field file, one
+# per line, vectors as "x y z" (a uniform field prints nothing).
+field_values() {
+    sed -n '/^internalField/,/^)/p' "$1" | sed '1,3d;$d' | tr -d '()'
+}
+
+# last_value FILE COLUMN: COLUMN of the last non-comment line (the
+# postProcessing .dat files).
+last_value() {
+    grep -v '^#' "$1" | tail -n 1 | awk -v c="$2" '{ print $c }'
+}

@@ -1,0 +1,216 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# test_buoyant.sh -- the Boussinesq solver (energy Eq. 37, source Eq. 4) on
+# buoyantBoussinesqPimpleFoam case files, against closed forms, the de Vahl
+# Davis (1983) benchmark and buoyantBoussinesqPimpleFoam itself.
+#   1. Conduction (g = 0) between a hot (T = 1) and a cold wall (T = 0) with
+#      zeroGradient (adiabatic) walls in between: steady T = 1 - x exactly
+#      (CPM is exact for linear fields and the adiabatic boundary particles
+#      carry the tangential extrapolation), |T - (1 - x)| < 1e-6; the
+#      nusseltNumber function object gives Nu = 1 (mls and snGrad) to 1e-5.
+#   2. Stable stratification (tests/cases/buoyantStratified: g points at the
+#      cold wall): the fluid must stay at rest. Steady p, p_rgh and T
+#      against buoyantBoussinesqPimpleFoam on the same mesh (pRefCell 0:
+#      p = 0 there in both); max |U| bounded: the spurious velocity of the
+#      non-incremental splitting is first order in dt (measured 2.9e-3 m/s at
+#      dt = 0.5 s, against the buoyant velocity scale sqrt(g beta dT L) = 0.17).
+#   3. de Vahl Davis Ra = 1e4, Pr = 0.71 (tests/cases/buoyantCavity), UMPPM*,
+#      CPM, maxCo 0.5, t = 200 s: hot-wall Nu_avg against 2.243 and the
+#      centreline velocity maxima (cell values) against 16.178 and 19.617
+#      (alpha/L) at 40 x 40 (measured 2.285, 15.37, 18.88: bounds 3 % and
+#      7 %); at 20 x 20 Nu_avg (measured 2.399) within 10 %, and against
+#      buoyantBoussinesqPimpleFoam on the same mesh: T differs by 1.5 % of
+#      its range (L2), U by 11 % (bounds 3 % and 15 %); foamNusselt on the
+#      written T gives the function object's snGrad value (2.342; OpenFOAM's
+#      2.294).
+#   4. Restart from the 20 x 20 run: the particle T is read back from the
+#      cloud; foamToVTK shows the cloud's T.
+#   5. Bad input ends in one error naming the file: a turbulence model, a
+#      missing Boussinesq constant, an unsupported T condition, a missing
+#      0/T, a function object on a patch that does not exist.
+# Needs UMPPMFOAM and TOOLDIR (foamCompare, foamNusselt).
+set -eu -o pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+[ -n "${UMPPMFOAM:-}" ] && [ -x "$UMPPMFOAM" ] || { echo "FAIL: UMPPMFOAM not set" >&2; exit 2; }
+[ -n "${TOOLDIR:-}" ] && [ -x "$TOOLDIR/foamNusselt" ] || { echo "FAIL: TOOLDIR not set" >&2; exit 2; }
+. "$here/lib.sh"
+of_env
+work=$(mktemp -d "${TMPDIR:-/tmp}/umppm-buoyant.XXXXXX")
+fail=0
+
+# the nusseltNumber function object on patch hot, T2 = 0 (Eq. 44)
+add_nusselt() {
+    local grad
+    {
+        echo "functions {"
+        for grad in mls snGrad; do
+            echo "  Nu_$grad { type nusseltNumber; patch hot; length 1; kappa 1; T1 1; T2 0;"
+            echo "             gradient $grad; writeControl timeStep; writeInterval 1; }"
+        done
+        echo "}"
+    } >> "$1/system/controlDict"
+}
+
+# run CASE [LOG]: umppmFoam in CASE
+run_ump() {
+    (cd "$1" && "$UMPPMFOAM" > "log.${2:-umppmFoam}" 2>&1)
+}
+
+# cells CASE TIME: "x y Ux Uy T" per cell (0/C from write_geometry)
+cells() {
+    paste -d ' ' <(field_values "$1/0/C") <(field_values "$1/$2/U") <(field_values "$1/$2/T") |
+        awk '{ print $1, $2, $4, $5, $7 }'
+}
+
+echo "== 1. conduction with adiabatic walls, g = 0"
+c=$work/conduction
+make_case buoyantCavity "$c"
+write_geometry "$c"
+foam_set "$c" constant/g value "(0 0 0)"
+foam_set "$c" system/controlDict adjustTimeStep no
+foam_set "$c" system/controlDict deltaT 100
+foam_set "$c" system/controlDict endTime 10000
+foam_set "$c" system/controlDict writeControl timeStep
+foam_set "$c" system/controlDict writeInterval 100
+add_nusselt "$c"
+if run_ump "$c"; then
+    err=$(cells "$c" 10000 | awk '{ e = $5 - (1 - $1); e = e < 0 ? -e : e; if (e > m) m = e } END { printf "%.3g", m }')
+    check_below "max |T - (1 - x)|" "$err" 1e-6
+    for g in mls snGrad; do
+        nu=$(last_value "$c/postProcessing/Nu_$g/0/nusseltNumber.dat" 2)
+        check_range "Nu ($g)" "$nu" 0.99999 1.00001
+    done
+    [ -f "$c/postProcessing/Nu_mls/10000/hot.dat" ] && echo "  ok   local Nu file at the write time" ||
+        { echo "  FAIL no postProcessing/Nu_mls/10000/hot.dat"; fail=1; }
+else
+    echo "  FAIL umppmFoam:"; tail -3 "$c/log.umppmFoam"; fail=1
+fi
+
+echo "== 2. stable stratification against buoyantBoussinesqPimpleFoam"
+s=$work/stratified
+make_case buoyantStratified "$s"
+write_geometry "$s"
+mkdir "$s/of"
+cp -r "$s/0" "$s/constant" "$s/system" "$s/of/"
+foam_set "$s" system/controlDict deltaT 0.5
+foam_set "$s" system/controlDict endTime 1000
+foam_set "$s" system/controlDict writeInterval 2000
+foam_set "$s/of" system/controlDict endTime 1000
+if run_ump "$s" && run_in "$s/of" buoyantBoussinesqPimpleFoam buoyantBoussinesqPimpleFoam; then
+    "$TOOLDIR/foamCompare" "$s" 1000 "$s/of" 1000 T p_rgh p | tee "$s/compare.txt"
+    check_below "T: L2 difference / range" "$(awk '$1 == "T" { print $6 }' "$s/compare.txt")" 0.01
+    check_below "p_rgh: L2 difference / range" "$(awk '$1 == "p_rgh" { print $6 }' "$s/compare.txt")" 0.05
+    check_below "p: L2 difference relative" "$(awk '$1 == "p" { print $4 }' "$s/compare.txt")" 1e-4
+    p0=$(field_values "$s/1000/p" | head -1)
+    check_range "p in pRefCell 0" "$p0" -1e-12 1e-12
+    umax=$(cells "$s" 1000 | awk '{ u = sqrt($3 * $3 + $4 * $4); if (u > m) m = u } END { printf "%.3g", m }')
+    check_below "max |U| at rest (dt 0.5 s)" "$umax" 0.005
+else
+    echo "  FAIL a solver failed:"; tail -3 "$s/log.umppmFoam" "$s/of/log.buoyantBoussinesqPimpleFoam"; fail=1
+fi
+
+echo "== 3. de Vahl Davis, Ra = 1e4"
+alpha=$(awk 'BEGIN { printf "%.10g", 1.44552067e-03 / 0.71 }')
+for n in 40 20; do
+    d=$work/dvd$n
+    make_case buoyantCavity "$d"
+    if [ "$n" != 20 ]; then
+        sed -i "s/(20 20 1)/($n $n 1)/" "$d/system/blockMeshDict"
+        run_in "$d" blockMesh blockMesh
+    fi
+    write_geometry "$d"
+    foam_set "$d" system/controlDict endTime 200
+    foam_set "$d" system/controlDict writeControl adjustableRunTime
+    foam_set "$d" system/controlDict writeInterval 100
+    add_nusselt "$d"
+    if ! run_ump "$d"; then
+        echo "  FAIL umppmFoam $n x $n:"; tail -3 "$d/log.umppmFoam"; fail=1; continue
+    fi
+    nu=$(last_value "$d/postProcessing/Nu_mls/0/nusseltNumber.dat" 2)
+    nus=$(last_value "$d/postProcessing/Nu_snGrad/0/nusseltNumber.dat" 2)
+    # u_max on x = 0.5 and v_max on y = 0.5: mean of the two cell columns
+    # (rows) nearest the centreline, in units of alpha / L
+    read -r um vm < <(cells "$d" 200 | awk -v n="$n" -v a="$alpha" '
+        BEGIN { h = 0.5 / n + 1e-9 }
+        { if ($1 > 0.5 - h && $1 < 0.5 + h) { U[sprintf("%.6f", $2)] += $3 / 2 }
+          if ($2 > 0.5 - h && $2 < 0.5 + h) { V[sprintf("%.6f", $1)] += $4 / 2 } }
+        END { for (k in U) if (U[k] > um) um = U[k]; for (k in V) if (V[k] > vm) vm = V[k];
+              printf "%.4f %.4f\n", um / a, vm / a }')
+    echo "  $n x $n: Nu_avg mls $nu snGrad $nus (de Vahl Davis 2.243); u_max $um (16.178), v_max $vm (19.617)"
+    if [ "$n" = 40 ]; then
+        check_range "40x40 Nu_avg (mls) vs 2.243" "$nu" 2.20 2.31
+        check_range "40x40 u_max vs 16.178 (7 %)" "$um" 15.05 17.31
+        check_range "40x40 v_max vs 19.617 (7 %)" "$vm" 18.24 20.99
+    else
+        check_range "20x20 Nu_avg (mls) vs 2.243" "$nu" 2.13 2.47
+        mkdir "$d/of"
+        cp -r "$d/0" "$d/constant" "$d/system" "$d/of/"
+        sed -i '/^functions {/,$d' "$d/of/system/controlDict"
+        if run_in "$d/of" buoyantBoussinesqPimpleFoam buoyantBoussinesqPimpleFoam; then
+            "$TOOLDIR/foamCompare" "$d" 200 "$d/of" 200 T U | tee "$d/compare.txt"
+            check_below "20x20 T vs buoyantBoussinesqPimpleFoam: L2 / range" \
+                "$(awk '$1 == "T" { print $6 }' "$d/compare.txt")" 0.03
+            check_below "20x20 U vs buoyantBoussinesqPimpleFoam: L2 relative" \
+                "$(awk '$1 == "U" { print $4 }' "$d/compare.txt")" 0.15
+            nof=$(kv_get "$("$TOOLDIR/foamNusselt" -case "$d/of" -patch hot -length 1 -T2 0 -time 200 | grep RESULT)" Nu_avg)
+            nou=$(kv_get "$("$TOOLDIR/foamNusselt" -case "$d" -patch hot -length 1 -T2 0 -time 200 | grep RESULT)" Nu_avg)
+            echo "  foamNusselt (snGrad of the written T): umppmFoam $nou, buoyantBoussinesqPimpleFoam $nof"
+            check_range "foamNusselt on umppmFoam = function object snGrad" "$nou" \
+                "$(awk -v a="$nus" 'BEGIN { print a - 0.02 * a }')" "$(awk -v a="$nus" 'BEGIN { print a + 0.02 * a }')"
+            check_range "buoyantBoussinesqPimpleFoam 20x20 Nu vs 2.243" "$nof" 2.0 2.5
+        else
+            echo "  FAIL buoyantBoussinesqPimpleFoam"; fail=1
+        fi
+    fi
+done
+
+echo "== 4. restart and foamToVTK"
+d=$work/dvd20
+if [ -d "$d/200" ]; then
+    foam_set "$d" system/controlDict startFrom latestTime
+    foam_set "$d" system/controlDict endTime 202
+    foam_set "$d" system/controlDict writeInterval 2
+    if run_ump "$d" umppmFoam.restart && grep -q '^Restart: 400 particles read' "$d/log.umppmFoam.restart" &&
+        ! grep -q 'no particle T' "$d/log.umppmFoam.restart"; then
+        echo "  ok   restart read 400 particles with their T"
+    else
+        echo "  FAIL restart:"; grep -E 'Restart|rror' "$d/log.umppmFoam.restart" | head -3; fail=1
+    fi
+    n_t=$(sed -n '/^[0-9]/{p;q}' "$d/200/lagrangian/umppmCloud/T")
+    check_range "cloud T entries" "$n_t" 400 400
+    if (cd "$d" && foamToVTK -time 200 > log.foamToVTK 2>&1) &&
+        grep -aq "Name='T'" "$(ls "$d"/VTK/lagrangian/umppmCloud/*.vtp | head -1)"; then
+        echo "  ok   foamToVTK shows the particle T"
+    else
+        echo "  FAIL foamToVTK cloud lacks T"; fail=1
+    fi
+fi
+
+echo "== 5. bad input"
+b=$work/bad
+make_case buoyantCavity "$b"
+cp -r "$b" "$b.orig"
+bad() { # NAME EXPECTED-REGEX: umppmFoam must fail with one line matching
+    local out
+    if out=$(cd "$b" && "$UMPPMFOAM" 2>&1); then
+        echo "  FAIL $1: umppmFoam succeeded"; fail=1
+    elif echo "$out" | grep -Eq "$2"; then
+        echo "  ok   $1: $(echo "$out" | grep -E "$2" | head -1)"
+    else
+        echo "  FAIL $1: expected /$2/, got: $(echo "$out" | tail -2)"; fail=1
+    fi
+    rm -rf "$b" && cp -r "$b.orig" "$b"
+}
+foam_set "$b" constant/turbulenceProperties simulationType RAS
+bad "turbulence model" "turbulenceProperties:[0-9]+: simulationType 'RAS' is not supported"
+sed -i '/^beta/d' "$b/constant/transportProperties"
+bad "no beta" "transportProperties: keyword 'beta' is missing"
+foam_set "$b" 0/T boundaryField/adiabatic "{ type fixedGradient; gradient uniform 0; }"
+bad "fixedGradient T" "fixedGradient"
+rm "$b/0/T"
+bad "no 0/T" "0/T: not found"
+echo "functions { Nu { type nusseltNumber; patch inner; length 1; kappa 1; } }" >> "$b/system/controlDict"
+bad "unknown patch" "controlDict: function object 'Nu': no patch 'inner'"
+
+if [ "$fail" = 0 ]; then rm -rf "$work"; else echo "(work directory kept: $work)"; fi
+exit $fail
