@@ -233,6 +233,7 @@ observed_order() {
 # field_values FILE: the internalField entries of an ascii field file, one
 # per line, vectors as "x y z" (a uniform field prints nothing).
 field_values() {
+    grep -q '^internalField *nonuniform' "$1" || return 0
     sed -n '/^internalField/,/^)/p' "$1" | sed '1,3d;$d' | tr -d '()'
 }
 

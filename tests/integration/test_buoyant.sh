@@ -56,9 +56,15 @@ run_ump() {
     (cd "$1" && "$UMPPMFOAM" > "log.${2:-umppmFoam}" 2>&1)
 }
 
-# cells CASE TIME: "x y Ux Uy T" per cell (0/C from write_geometry)
+# cells CASE TIME: "x y Ux Uy T" per cell (0/C from write_geometry; a
+# uniform U, the fluid exactly at rest, is written as "uniform (0 0 0)")
 cells() {
-    paste -d ' ' <(field_values "$1/0/C") <(field_values "$1/$2/U") <(field_values "$1/$2/T") |
+    local n u
+    n=$(field_values "$1/0/C" | wc -l)
+    u=$(field_values "$1/$2/U")
+    [ -n "$u" ] || u=$(awk -v n="$n" -v v="$(sed -n 's/^internalField *uniform *(\(.*\));/\1/p' "$1/$2/U")" \
+        'BEGIN { for (i = 0; i < n; i++) print v }')
+    paste -d ' ' <(field_values "$1/0/C") <(echo "$u") <(field_values "$1/$2/T") |
         awk '{ print $1, $2, $4, $5, $7 }'
 }
 
