@@ -436,18 +436,18 @@ static ump_status run_functions(app *a, const rt_time *t, long step, const char 
 {
     for (int i = 0; i < a->fo.n; i++) {
         fob_nusselt *f = &a->fo.nu[i];
-        int write_time = step == 0 || t->write_time;
-        if (!fob_due(f, step, write_time) && !t->write_time)
+        int series = step == 0 || fob_due(f, step, t->write_time), local = t->write_time && step > 0;
+        if (!series && !local)
             continue;
         fob_faces d;
         UMP_CALL(fo_faces(a, f, &d, err));
         fob_result r = fob_nusselt_eval(f, &d, a->tr.TRef);
-        if (fob_due(f, step, write_time)) {
+        if (series) {
             UMP_CALL(fob_nusselt_append(f, a->case_dir, start_name, t->value, &r, a->ctl.write_precision, err));
             printf("nusseltNumber %s: patch %s Nu_avg = %g (min %g, max %g)\n", f->name, f->patch, r.Nu_avg,
                    r.Nu_min, r.Nu_max);
         }
-        if (t->write_time && step > 0)
+        if (local)
             UMP_CALL(fob_nusselt_local(f, a->case_dir, t->name, &d, &r, a->ctl.write_precision, err));
     }
     return UMP_OK;

@@ -638,10 +638,12 @@ static ump_status predictor(sol *S, double dt, sol_stats *st, ump_err *err)
 
 /* MLS value (Eq. 32) at (x, y) in cell c of nv particle quantities:
  * fluid[k] [particles] and bnd[k] [boundary particles] give quantity k,
- * out[k] its value; skip_face's own boundary particle is left out (-1: none). */
+ * out[k] its value, and gx[k], gy[k] its derivatives (Eqs. 33-34) unless gx
+ * is NULL; skip_face's own boundary particle is left out (-1: none). */
 static ump_status mls_particles(sol *S, ump_idx c, double x, double y, double mdx, double mdy,
                                 ump_idx skip_face, int nv, const double *const *fluid,
-                                const double *const *bnd, double *out, sol_stats *st, ump_err *err)
+                                const double *const *bnd, double *out, double *gx, double *gy,
+                                sol_stats *st, ump_err *err)
 {
     size_t cnt;
     UMP_CALL(gather(S, c, x, y, SIZE_MAX, &cnt, err));
@@ -656,16 +658,25 @@ static ump_status mls_particles(sol *S, ump_idx c, double x, double y, double md
         n++;
     }
     mls_info info;
-    mls_basis b = mls_weights(S->h, S->k, n, mdx, mdy, S->c0, NULL, NULL, &info);
+    mls_basis b = mls_weights(S->h, S->k, n, mdx, mdy, S->c0, gx ? S->cx : NULL, gx ? S->cy : NULL, &info);
     if (b != MLS_QUADRATIC)
         st->mls_fallbacks++;
     for (int k = 0; k < nv; k++) {
-        double sum = 0;
+        double sum = 0, sx = 0, sy = 0;
         for (int j = 0; j < n; j++) {
             const part_nbr *q = &S->nb[j];
-            sum += S->c0[j] * (q->is_boundary ? bnd[k][q->index] : fluid[k][q->index]);
+            double v = q->is_boundary ? bnd[k][q->index] : fluid[k][q->index];
+            sum += S->c0[j] * v;
+            if (gx) {
+                sx += S->cx[j] * v;
+                sy += S->cy[j] * v;
+            }
         }
         out[k] = sum;
+        if (gx) {
+            gx[k] = sx;
+            gy[k] = sy;
+        }
     }
     return UMP_OK;
 }
@@ -676,7 +687,7 @@ static ump_status mls_velocity(sol *S, ump_idx c, double x, double y, double mdx
 {
     const double *fluid[2] = {S->us, S->vs}, *bnd[2] = {S->bp.u, S->bp.v};
     double uv[2];
-    UMP_CALL(mls_particles(S, c, x, y, mdx, mdy, skip_face, 2, fluid, bnd, uv, st, err));
+    UMP_CALL(mls_particles(S, c, x, y, mdx, mdy, skip_face, 2, fluid, bnd, uv, NULL, NULL, st, err));
     *u = uv[0];
     *v = uv[1];
     return UMP_OK;
@@ -806,7 +817,7 @@ ump_status sol_step(sol *S, double dt, sol_stats *st, ump_err *err)
         const double *fluid[1] = {P->T}, *bnd[1] = {S->bp.T};
         for (ump_idx c = 0; c < m->ncells; c++)
             UMP_CALL(mls_particles(S, c, m->cx[c], m->cy[c], m->dx[c], m->dy[c], -1, 1, fluid, bnd,
-                                   &S->Tc[c], st, err));
+                                   &S->Tc[c], NULL, NULL, st, err));
     }
     part_manage_stats ms;
     UMP_CALL(part_manage(P, &S->bins, m, S->set.variant, S->set.alpha, S->uc, S->vc, S->Tc, &ms, err));
@@ -962,22 +973,11 @@ ump_status sol_wall_dTdn(sol *S, ump_idx f, sol_grad_method how, double *dTdn, u
     }
     /* quadratic MLS derivative (Eqs. 33-34) at the face centre over the
      * fluid and boundary particles of the owner's N2 stencil */
-    size_t cnt;
-    UMP_CALL(gather(S, o, m->fx[f], m->fy[f], SIZE_MAX, &cnt, err));
-    int n = 0;
-    for (size_t j = 0; j < cnt && n < MLS_MAX_SAMPLES; j++) {
-        S->h[n] = S->nb[j].dx;
-        S->k[n] = S->nb[j].dy;
-        n++;
-    }
-    mls_info info;
-    mls_weights(S->h, S->k, n, m->dx[o], m->dy[o], S->c0, S->cx, S->cy, &info);
-    double g = 0;
-    for (int j = 0; j < n; j++) {
-        const part_nbr *q = &S->nb[j];
-        double T = q->is_boundary ? S->bp.T[q->index] : S->P->T[q->index];
-        g += (S->cx[j] * nx + S->cy[j] * ny) * T;
-    }
-    *dTdn = g;
+    const double *fluid[1] = {S->P->T}, *bnd[1] = {S->bp.T};
+    double T, gx, gy;
+    sol_stats st = {0};
+    UMP_CALL(mls_particles(S, o, m->fx[f], m->fy[f], m->dx[o], m->dy[o], -1, 1, fluid, bnd, &T, &gx, &gy,
+                           &st, err));
+    *dTdn = gx * nx + gy * ny;
     return UMP_OK;
 }

@@ -107,7 +107,7 @@ if run_ump "$s" && run_in "$s/of" buoyantBoussinesqPimpleFoam buoyantBoussinesqP
     check_below "T: L2 difference / range" "$(awk '$1 == "T" { print $6 }' "$s/compare.txt")" 0.01
     check_below "p_rgh: L2 difference / range" "$(awk '$1 == "p_rgh" { print $6 }' "$s/compare.txt")" 0.05
     check_below "p: L2 difference relative" "$(awk '$1 == "p" { print $4 }' "$s/compare.txt")" 1e-4
-    p0=$(field_values "$s/1000/p" | head -1)
+    p0=$(field_values "$s/1000/p" | awk 'NR == 1')
     check_range "p in pRefCell 0" "$p0" -1e-12 1e-12
     umax=$(cells "$s" 1000 | awk '{ u = sqrt($3 * $3 + $4 * $4); if (u > m) m = u } END { printf "%.3g", m }')
     check_below "max |U| at rest (dt 0.5 s)" "$umax" 0.005
@@ -185,7 +185,7 @@ if [ -d "$d/200" ]; then
     n_t=$(sed -n '/^[0-9]/{p;q}' "$d/200/lagrangian/umppmCloud/T")
     check_range "cloud T entries" "$n_t" 400 400
     if (cd "$d" && foamToVTK -time 200 > log.foamToVTK 2>&1) &&
-        grep -aq "Name='T'" "$(ls "$d"/VTK/lagrangian/umppmCloud/*.vtp | head -1)"; then
+        grep -aq "Name='T'" "$(ls "$d"/VTK/lagrangian/umppmCloud/*.vtp | awk 'NR == 1')"; then
         echo "  ok   foamToVTK shows the particle T"
     else
         echo "  FAIL foamToVTK cloud lacks T"; fail=1
@@ -201,7 +201,7 @@ bad() { # NAME EXPECTED-REGEX: umppmFoam must fail with one line matching
     if out=$(cd "$b" && "$UMPPMFOAM" 2>&1); then
         echo "  FAIL $1: umppmFoam succeeded"; fail=1
     elif echo "$out" | grep -Eq "$2"; then
-        echo "  ok   $1: $(echo "$out" | grep -E "$2" | head -1)"
+        echo "  ok   $1: $(echo "$out" | grep -E "$2" | awk 'NR == 1')"
     else
         echo "  FAIL $1: expected /$2/, got: $(echo "$out" | tail -2)"; fail=1
     fi
