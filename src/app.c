@@ -48,6 +48,7 @@ typedef struct app {
     sol *S;
     fob_list fo;                    /* controlDict function objects */
     double *fo_x3, *fo_area, *fo_dTdn, *fo_Tf; /* per-patch scratch */
+    double *fo_val;                             /* [3 * FOB_MAX_FIELDS * fo_cap] */
     ump_idx *fo_face;
     size_t fo_cap;
     char **written;          /* purgeWrite bookkeeping */
@@ -73,6 +74,7 @@ static void app_free(app *a)
     free(a->fo_area);
     free(a->fo_dTdn);
     free(a->fo_Tf);
+    free(a->fo_val);
     free(a->fo_face);
     mesh_free(&a->m);
     pmesh_free(&a->pm);
@@ -384,8 +386,9 @@ static ump_status read_buoyant(app *a, const char *tname, ump_err *err)
     return UMP_OK;
 }
 
-/* Patch data of a Nusselt function object (faces of the named patch). */
-static ump_status fo_faces(app *a, const fob_nusselt *f, fob_faces *d, ump_err *err)
+/* The 2-D boundary faces (f >= ninternal) of function object f's patch in
+ * a->fo_face[0..*n), their areas (3-D) and centres in a->fo_area, fo_x3. */
+static ump_status fo_patch_faces(app *a, const fob_common *f, size_t *n, ump_err *err)
 {
     int pi = -1;
     for (int p = 0; p < a->pm->npatches; p++)
@@ -398,10 +401,11 @@ static ump_status fo_faces(app *a, const fob_nusselt *f, fob_faces *d, ump_err *
     const mesh2d *m = a->m;
     if ((size_t)pp->n > a->fo_cap) {
         size_t c = (size_t)pp->n;
-        double **arr[] = {&a->fo_x3, &a->fo_area, &a->fo_dTdn, &a->fo_Tf};
-        for (size_t i = 0; i < 4; i++) {
+        double **arr[] = {&a->fo_x3, &a->fo_area, &a->fo_dTdn, &a->fo_Tf, &a->fo_val};
+        size_t len[] = {3 * c, c, c, c, 3 * FOB_MAX_FIELDS * c};
+        for (size_t i = 0; i < 5; i++) {
             free(*arr[i]);
-            if (!(*arr[i] = ump_alloc_array(i ? c : 3 * c, sizeof(double))))
+            if (!(*arr[i] = ump_alloc_array(len[i], sizeof(double))))
                 return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
         }
         free(a->fo_face);
@@ -409,20 +413,34 @@ static ump_status fo_faces(app *a, const fob_nusselt *f, fob_faces *d, ump_err *
             return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
         a->fo_cap = c;
     }
-    size_t n = 0;
+    size_t k = 0;
     for (ump_idx i = 0; i < pp->n; i++) {
         ump_idx f2 = m->pmface_to_face[pp->start + i];
         if (f2 < m->ninternal)
             continue;
-        UMP_CALL(sol_wall_dTdn(a->S, f2, f->snGrad ? SOL_GRAD_SNGRAD : SOL_GRAD_MLS, &a->fo_dTdn[n], err));
-        mesh_to3d(m, m->fx[f2], m->fy[f2], a->fo_x3 + 3 * n);
-        a->fo_area[n] = m->len[f2];
-        a->fo_Tf[n] = sol_face_T(a->S, f2);
-        n++;
+        a->fo_face[k] = f2;
+        mesh_to3d(m, m->fx[f2], m->fy[f2], a->fo_x3 + 3 * k);
+        a->fo_area[k] = m->len[f2] * (m->zmax - m->zmin);
+        k++;
     }
-    if (n == 0)
+    if (k == 0)
         return UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/controlDict: function object '%s': patch '%s' has no "
                         "boundary faces in 2-D (empty or cyclic)", a->case_dir, f->name, f->patch);
+    *n = k;
+    return UMP_OK;
+}
+
+/* Patch data of a Nusselt function object. */
+static ump_status fo_nusselt_faces(app *a, const fob_nusselt *f, fob_faces *d, ump_err *err)
+{
+    size_t n;
+    UMP_CALL(fo_patch_faces(a, &f->c, &n, err));
+    for (size_t k = 0; k < n; k++) {
+        ump_idx f2 = a->fo_face[k];
+        UMP_CALL(sol_wall_dTdn(a->S, f2, f->snGrad ? SOL_GRAD_SNGRAD : SOL_GRAD_MLS, &a->fo_dTdn[k], err));
+        a->fo_area[k] = a->m->len[f2];
+        a->fo_Tf[k] = sol_face_T(a->S, f2);
+    }
     d->n = n;
     d->x3 = a->fo_x3;
     d->area = a->fo_area;
@@ -431,24 +449,82 @@ static ump_status fo_faces(app *a, const fob_nusselt *f, fob_faces *d, ump_err *
     return UMP_OK;
 }
 
+/* The face values of surfaceFieldValue f's fields, as written in the time
+ * directories (p and p_rgh of a buoyant run as buoyantBoussinesqPimpleFoam
+ * defines them). */
+static ump_status fo_sfv_values(app *a, const fob_sfv *f, fob_patch_field *vals, ump_err *err)
+{
+    size_t n;
+    UMP_CALL(fo_patch_faces(a, &f->c, &n, err));
+    for (int j = 0; j < f->nfields; j++) {
+        const char *name = f->field[j];
+        int is_U = strcmp(name, "U") == 0, is_p = strcmp(name, "p") == 0;
+        int is_T = strcmp(name, "T") == 0, is_prgh = strcmp(name, "p_rgh") == 0;
+        if (!is_U && !is_p && !((is_T || is_prgh) && a->T))
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/controlDict: function object '%s': field '%s' is "
+                            "not one of: U p%s", a->case_dir, f->c.name, name, a->T ? " T p_rgh" : "");
+        double *v = a->fo_val + 3 * (size_t)j * a->fo_cap;
+        for (size_t k = 0; k < n; k++) {
+            ump_idx f2 = a->fo_face[k];
+            double u, w, pv, prgh;
+            sol_face_values(a->S, f2, &u, &w, &pv);
+            if (a->T)
+                sol_buoyant_pressure(a->S, -1, f2, &pv, &prgh);
+            if (is_U) {
+                double *V = v + 3 * k;
+                V[a->m->normal] = 0;
+                V[a->m->ax[0]] = u;
+                V[a->m->ax[1]] = w;
+            } else {
+                v[k] = is_p ? pv : is_prgh ? prgh : sol_face_T(a->S, f2);
+            }
+        }
+        vals[j].n = n;
+        vals[j].ncomp = is_U ? 3 : 1;
+        vals[j].area = a->fo_area;
+        vals[j].v = v;
+    }
+    return UMP_OK;
+}
+
 /* Run the function objects after a step (and at the start, step 0). */
 static ump_status run_functions(app *a, const rt_time *t, long step, const char *start_name, ump_err *err)
 {
     for (int i = 0; i < a->fo.n; i++) {
         fob_nusselt *f = &a->fo.nu[i];
-        int series = step == 0 || fob_due(f, step, t->write_time), local = t->write_time && step > 0;
+        int series = step == 0 || fob_due(&f->c, step, t->write_time), local = t->write_time && step > 0;
         if (!series && !local)
             continue;
         fob_faces d;
-        UMP_CALL(fo_faces(a, f, &d, err));
+        UMP_CALL(fo_nusselt_faces(a, f, &d, err));
         fob_result r = fob_nusselt_eval(f, &d, a->tr.TRef);
         if (series) {
             UMP_CALL(fob_nusselt_append(f, a->case_dir, start_name, t->value, &r, a->ctl.write_precision, err));
-            printf("nusseltNumber %s: patch %s Nu_avg = %g (min %g, max %g)\n", f->name, f->patch, r.Nu_avg,
-                   r.Nu_min, r.Nu_max);
+            printf("nusseltNumber %s: patch %s Nu_avg = %g (min %g, max %g)\n", f->c.name, f->c.patch,
+                   r.Nu_avg, r.Nu_min, r.Nu_max);
         }
         if (local)
             UMP_CALL(fob_nusselt_local(f, a->case_dir, t->name, &d, &r, a->ctl.write_precision, err));
+    }
+    for (int i = 0; i < a->fo.nsf; i++) {
+        fob_sfv *f = &a->fo.sf[i];
+        if (step == 0 || !fob_due(&f->c, step, t->write_time)) /* OpenFOAM's: not at the start */
+            continue;
+        fob_patch_field vals[FOB_MAX_FIELDS];
+        UMP_CALL(fo_sfv_values(a, f, vals, err));
+        UMP_CALL(fob_sfv_append(f, a->case_dir, start_name, t->value, vals, a->ctl.write_precision, err));
+        if (f->op == FOB_NONE)
+            continue;
+        printf("surfaceFieldValue %s write:\n", f->c.name); /* as OpenFOAM logs it */
+        for (int j = 0; j < f->nfields; j++) {
+            double out[3];
+            fob_sfv_eval(f, &vals[j], out);
+            printf("    %s(%s) of %s = ", fob_op_name(f->op), f->c.patch, f->field[j]);
+            if (vals[j].ncomp == 1)
+                printf("%g\n", out[0]);
+            else
+                printf("(%g %g %g)\n", out[0], out[1], out[2]);
+        }
     }
     return UMP_OK;
 }

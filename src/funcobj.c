@@ -17,14 +17,37 @@ static void note_ignored(fob_list *L, const char *name, const char *type)
     snprintf(L->ignored + len, sizeof L->ignored - len, "%s%s (%s)", len ? ", " : "", name, type);
 }
 
+/* name, patch (key `patch` or, for surfaceFieldValue, `name`),
+ * writeControl, writeInterval. */
+static ump_status read_common(const foam_dict *d, const char *name, const char *patch_key, fob_common *c,
+                              ump_err *err)
+{
+    snprintf(c->name, sizeof c->name, "%s", name);
+    const char *patch = NULL, *wc = NULL;
+    int64_t interval = 1;
+    UMP_CALL(foam_get_word(d, patch_key, &patch, err));
+    snprintf(c->patch, sizeof c->patch, "%s", patch);
+    UMP_CALL(foam_get_word_or(d, "writeControl", "timeStep", &wc, err));
+    if (strcmp(wc, "timeStep") != 0 && strcmp(wc, "writeTime") != 0 && strcmp(wc, "outputTime") != 0) {
+        const foam_entry *e = foam_dict_find(d, "writeControl", 0);
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: writeControl '%s' is not one of: timeStep writeTime",
+                        e->file, e->line, wc);
+    }
+    c->on_write_time = strcmp(wc, "timeStep") != 0;
+    UMP_CALL(foam_get_label_or(d, "writeInterval", 1, &interval, err));
+    if (interval < 1) {
+        const foam_entry *e = foam_dict_find(d, "writeInterval", 0);
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: writeInterval must be >= 1", e->file, e->line);
+    }
+    c->interval = (long)interval;
+    return UMP_OK;
+}
+
 static ump_status read_nusselt(const foam_dict *d, const char *name, fob_nusselt *f, ump_err *err)
 {
     memset(f, 0, sizeof *f);
-    snprintf(f->name, sizeof f->name, "%s", name);
-    const char *patch = NULL, *grad = NULL, *wc = NULL;
-    int64_t interval = 1;
-    UMP_CALL(foam_get_word(d, "patch", &patch, err));
-    snprintf(f->patch, sizeof f->patch, "%s", patch);
+    const char *grad = NULL;
+    UMP_CALL(read_common(d, name, "patch", &f->c, err));
     UMP_CALL(foam_get_scalar(d, "length", &f->length, err));
     UMP_CALL(foam_get_scalar(d, "kappa", &f->kappa, err));
     if (!(f->length > 0) || !(f->kappa > 0))
@@ -43,20 +66,68 @@ static ump_status read_nusselt(const foam_dict *d, const char *name, fob_nusselt
                         e->line, grad);
     }
     f->snGrad = strcmp(grad, "snGrad") == 0;
-    UMP_CALL(foam_get_word_or(d, "writeControl", "timeStep", &wc, err));
-    if (strcmp(wc, "timeStep") != 0 && strcmp(wc, "writeTime") != 0 && strcmp(wc, "outputTime") != 0) {
-        const foam_entry *e = foam_dict_find(d, "writeControl", 0);
-        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: writeControl '%s' is not one of: timeStep writeTime",
-                        e->file, e->line, wc);
-    }
-    f->on_write_time = strcmp(wc, "timeStep") != 0;
-    UMP_CALL(foam_get_label_or(d, "writeInterval", 1, &interval, err));
-    if (interval < 1) {
-        const foam_entry *e = foam_dict_find(d, "writeInterval", 0);
-        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: writeInterval must be >= 1", e->file, e->line);
-    }
-    f->interval = (long)interval;
     return UMP_OK;
+}
+
+static const char *const op_names[] = {"none", "sum", "average", "areaAverage", "areaIntegrate", "min", "max"};
+
+const char *fob_op_name(fob_op op)
+{
+    return op_names[op];
+}
+
+static ump_status read_sfv(const foam_dict *d, const char *name, fob_sfv *f, ump_err *err)
+{
+    memset(f, 0, sizeof *f);
+    const char *rt = NULL, *op = NULL;
+    int wf = 0;
+    UMP_CALL(foam_get_word(d, "regionType", &rt, err));
+    if (strcmp(rt, "patch") != 0) {
+        const foam_entry *e = foam_dict_find(d, "regionType", 0);
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: function object '%s': regionType '%s' is not supported "
+                        "by umppmFoam (only: patch)", e->file, e->line, name, rt);
+    }
+    UMP_CALL(read_common(d, name, "name", &f->c, err));
+    UMP_CALL(foam_get_word(d, "operation", &op, err));
+    size_t k = 0;
+    while (k < sizeof op_names / sizeof *op_names && strcmp(op, op_names[k]) != 0)
+        k++;
+    if (k == sizeof op_names / sizeof *op_names) {
+        const foam_entry *e = foam_dict_find(d, "operation", 0);
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: function object '%s': operation '%s' is not one of: "
+                        "none sum average areaAverage areaIntegrate min max", e->file, e->line, name, op);
+    }
+    f->op = (fob_op)k;
+    UMP_CALL(foam_get_bool_or(d, "writeFields", 0, &wf, err));
+    if (wf) {
+        const foam_entry *e = foam_dict_find(d, "writeFields", 0);
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: function object '%s': writeFields true is not supported "
+                        "by umppmFoam (set it false)", e->file, e->line, name);
+    }
+    const foam_entry *e = foam_dict_find(d, "fields", 0);
+    if (!e || e->dict)
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: function object '%s': expected 'fields (f1 f2 ...);'",
+                        d->file, d->line, name);
+    /* fields ( w w ... ) */
+    size_t i = 0;
+    if (e->ntok >= 2 && e->tok[0].type == FOAM_TOK_PUNCT && e->tok[0].v.punct == '(')
+        for (i = 1; i < e->ntok && e->tok[i].type == FOAM_TOK_WORD; i++) {
+            if (f->nfields == FOB_MAX_FIELDS)
+                return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: function object '%s': more than %d fields",
+                                e->file, e->line, name, FOB_MAX_FIELDS);
+            snprintf(f->field[f->nfields++], sizeof f->field[0], "%s", e->tok[i].v.str);
+        }
+    if (e->ntok < 2 || i != e->ntok - 1 || e->tok[i].type != FOAM_TOK_PUNCT || e->tok[i].v.punct != ')' ||
+        f->nfields == 0)
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: function object '%s': expected 'fields (f1 f2 ...);'",
+                        e->file, e->line, name);
+    return UMP_OK;
+}
+
+/* Append one element to an array of function objects. */
+static void *grow(void *arr, int n, size_t size)
+{
+    return ump_realloc_array(arr, (size_t)n + 1, size);
 }
 
 ump_status fob_read(const char *case_dir, fob_list *L, ump_err *err)
@@ -81,19 +152,29 @@ ump_status fob_read(const char *case_dir, fob_list *L, ump_err *err)
             break;
         if (!enabled)
             continue;
-        if (strcmp(type, "nusseltNumber") != 0) {
+        if (strcmp(type, "nusseltNumber") == 0) {
+            fob_nusselt *q = grow(L->nu, L->n, sizeof *q);
+            if (!q) {
+                rc = UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+                break;
+            }
+            L->nu = q;
+            if ((rc = read_nusselt(e->dict, e->key, &L->nu[L->n], err)) != UMP_OK)
+                break;
+            L->n++;
+        } else if (strcmp(type, "surfaceFieldValue") == 0) {
+            fob_sfv *q = grow(L->sf, L->nsf, sizeof *q);
+            if (!q) {
+                rc = UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+                break;
+            }
+            L->sf = q;
+            if ((rc = read_sfv(e->dict, e->key, &L->sf[L->nsf], err)) != UMP_OK)
+                break;
+            L->nsf++;
+        } else {
             note_ignored(L, e->key, type);
-            continue;
         }
-        fob_nusselt *q = ump_realloc_array(L->nu, (size_t)L->n + 1, sizeof *q);
-        if (!q) {
-            rc = UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
-            break;
-        }
-        L->nu = q;
-        if ((rc = read_nusselt(e->dict, e->key, &L->nu[L->n], err)) != UMP_OK)
-            break;
-        L->n++;
     }
     foam_file_free(&file);
     if (rc != UMP_OK)
@@ -104,11 +185,16 @@ ump_status fob_read(const char *case_dir, fob_list *L, ump_err *err)
 void fob_free(fob_list *L)
 {
     for (int i = 0; i < L->n; i++)
-        if (L->nu[i].fp)
-            fclose(L->nu[i].fp);
+        if (L->nu[i].c.fp)
+            fclose(L->nu[i].c.fp);
+    for (int i = 0; i < L->nsf; i++)
+        if (L->sf[i].c.fp)
+            fclose(L->sf[i].c.fp);
     free(L->nu);
+    free(L->sf);
     L->nu = NULL;
-    L->n = 0;
+    L->sf = NULL;
+    L->n = L->nsf = 0;
 }
 
 fob_result fob_nusselt_eval(const fob_nusselt *f, const fob_faces *d, double t_ref)
@@ -137,52 +223,136 @@ fob_result fob_nusselt_eval(const fob_nusselt *f, const fob_faces *d, double t_r
     return r;
 }
 
-int fob_due(const fob_nusselt *f, long step, int write_time)
+int fob_due(const fob_common *f, long step, int write_time)
 {
     return f->on_write_time ? write_time : step % f->interval == 0;
+}
+
+/* Open postProcessing/<name>/<start_time>/<base>.dat (an existing file of an
+ * earlier run is kept: the new one gets the suffix _<start_time>, as
+ * OpenFOAM's writeFile does). */
+static ump_status open_series(fob_common *f, const char *case_dir, const char *start_time, const char *base,
+                              ump_err *err)
+{
+    char dir[4200];
+    snprintf(dir, sizeof dir, "%s/postProcessing/%s/%s", case_dir, f->name, start_time);
+    UMP_CALL(fio_mkdir_p(dir, err));
+    snprintf(f->path, sizeof f->path, "%s/%s.dat", dir, base);
+    struct stat sb;
+    if (stat(f->path, &sb) == 0)
+        snprintf(f->path, sizeof f->path, "%s/%s_%s.dat", dir, base, start_time);
+    f->fp = fopen(f->path, "w");
+    if (!f->fp)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot create: %s", f->path, strerror(errno));
+    return UMP_OK;
+}
+
+static ump_status flush_series(fob_common *f, ump_err *err)
+{
+    if (fflush(f->fp) != 0 || ferror(f->fp))
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: write failed: %s", f->path, strerror(errno));
+    return UMP_OK;
 }
 
 ump_status fob_nusselt_append(fob_nusselt *f, const char *case_dir, const char *start_time, double t,
                               const fob_result *r, int precision, ump_err *err)
 {
-    if (!f->fp) {
-        char dir[4200];
-        snprintf(dir, sizeof dir, "%s/postProcessing/%s/%s", case_dir, f->name, start_time);
-        UMP_CALL(fio_mkdir_p(dir, err));
-        snprintf(f->path, sizeof f->path, "%s/nusseltNumber.dat", dir);
-        struct stat sb;
-        if (stat(f->path, &sb) == 0)
-            snprintf(f->path, sizeof f->path, "%s/nusseltNumber_%s.dat", dir, start_time);
-        f->fp = fopen(f->path, "w");
-        if (!f->fp)
-            return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot create: %s", f->path, strerror(errno));
-        fprintf(f->fp, "# Nusselt number (umppmFoam nusseltNumber; Eqs. 43-45 of Ng, Sheu & Hwang 2016)\n"
+    FILE *fp = f->c.fp;
+    if (!fp) {
+        UMP_CALL(open_series(&f->c, case_dir, start_time, "nusseltNumber", err));
+        fp = f->c.fp;
+        fprintf(fp, "# Nusselt number (umppmFoam nusseltNumber; Eqs. 43-45 of Ng, Sheu & Hwang 2016)\n"
                        "# patch    : %s\n# length   : %.*g\n# kappa    : %.*g\n# T1 - T2  : %.*g - %.*g\n"
                        "# gradient : %s\n# Time\tNu_avg\th_avg\tq_avg\tNu_min\tNu_max\n",
-                f->patch, precision, f->length, precision, f->kappa, precision, r->T1, precision, r->T2,
+                f->c.patch, precision, f->length, precision, f->kappa, precision, r->T1, precision, r->T2,
                 f->snGrad ? "snGrad" : "mls");
     }
-    fprintf(f->fp, "%.*g\t%.*g\t%.*g\t%.*g\t%.*g\t%.*g\n", precision, t, precision, r->Nu_avg, precision,
+    fprintf(fp, "%.*g\t%.*g\t%.*g\t%.*g\t%.*g\t%.*g\n", precision, t, precision, r->Nu_avg, precision,
             r->h_avg, precision, r->q_avg, precision, r->Nu_min, precision, r->Nu_max);
-    if (fflush(f->fp) != 0)
-        return UMP_FAIL(err, UMP_ERR_IO, "%s: write failed: %s", f->path, strerror(errno));
-    return UMP_OK;
+    return flush_series(&f->c, err);
+}
+
+void fob_sfv_eval(const fob_sfv *f, const fob_patch_field *d, double *out)
+{
+    int nc = d->ncomp;
+    double A = 0;
+    for (int k = 0; k < nc; k++)
+        out[k] = f->op == FOB_MIN ? INFINITY : f->op == FOB_MAX ? -INFINITY : 0;
+    for (size_t i = 0; i < d->n; i++) {
+        A += d->area[i];
+        for (int k = 0; k < nc; k++) {
+            double v = d->v[i * (size_t)nc + (size_t)k];
+            switch (f->op) {
+            case FOB_MIN: out[k] = fmin(out[k], v); break;
+            case FOB_MAX: out[k] = fmax(out[k], v); break;
+            case FOB_AREA_AVERAGE:
+            case FOB_AREA_INTEGRATE: out[k] += d->area[i] * v; break;
+            default: out[k] += v; break;
+            }
+        }
+    }
+    for (int k = 0; k < nc; k++)
+        if (f->op == FOB_AREA_AVERAGE)
+            out[k] /= A;
+        else if (f->op == FOB_AVERAGE)
+            out[k] /= (double)d->n;
+}
+
+static void put_value(FILE *fp, int nc, const double *v, int precision)
+{
+    if (nc == 1) {
+        fprintf(fp, "\t%.*g", precision, v[0]);
+        return;
+    }
+    fprintf(fp, "\t(");
+    for (int k = 0; k < nc; k++)
+        fprintf(fp, "%s%.*g", k ? " " : "", precision, v[k]);
+    fprintf(fp, ")");
+}
+
+ump_status fob_sfv_append(fob_sfv *f, const char *case_dir, const char *start_time, double t,
+                          const fob_patch_field *vals, int precision, ump_err *err)
+{
+    FILE *fp = f->c.fp;
+    if (!fp) {
+        UMP_CALL(open_series(&f->c, case_dir, start_time, "surfaceFieldValue", err));
+        fp = f->c.fp;
+        double A = 0;
+        for (size_t i = 0; i < vals[0].n; i++)
+            A += vals[0].area[i];
+        fprintf(fp, "# Region type : patch %s\n# Faces       : %zu\n# Area        : %.*g\n"
+                    "# Scale factor: 1\n# Time        ",
+                f->c.patch, vals[0].n, precision, A);
+        for (int k = 0; k < f->nfields; k++)
+            fprintf(fp, "\t%s(%s)", fob_op_name(f->op), f->field[k]);
+        fprintf(fp, "\n");
+    }
+    fprintf(fp, "%-14.*g", precision, t);
+    for (int k = 0; k < f->nfields; k++) {
+        double out[3];
+        if (f->op == FOB_NONE)
+            continue;
+        fob_sfv_eval(f, &vals[k], out);
+        put_value(fp, vals[k].ncomp, out, precision);
+    }
+    fprintf(fp, "\n");
+    return flush_series(&f->c, err);
 }
 
 ump_status fob_nusselt_local(const fob_nusselt *f, const char *case_dir, const char *time_name,
                              const fob_faces *d, const fob_result *r, int precision, ump_err *err)
 {
     char dir[4200], path[4400], tmp[4500];
-    snprintf(dir, sizeof dir, "%s/postProcessing/%s/%s", case_dir, f->name, time_name);
+    snprintf(dir, sizeof dir, "%s/postProcessing/%s/%s", case_dir, f->c.name, time_name);
     UMP_CALL(fio_mkdir_p(dir, err));
-    snprintf(path, sizeof path, "%s/%s.dat", dir, f->patch);
+    snprintf(path, sizeof path, "%s/%s.dat", dir, f->c.patch);
     snprintf(tmp, sizeof tmp, "%s.tmp", path);
     FILE *fp = fopen(tmp, "w");
     if (!fp)
         return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot create: %s", tmp, strerror(errno));
     double dT = r->T1 - r->T2;
     fprintf(fp, "# local heat transfer on patch %s at time %s (Eqs. 43-45; T1 - T2 = %.*g)\n"
-                "# x\ty\tz\tdTdn\tq\th\tNu\n", f->patch, time_name, precision, dT);
+                "# x\ty\tz\tdTdn\tq\th\tNu\n", f->c.patch, time_name, precision, dT);
     for (size_t i = 0; i < d->n; i++) {
         double q = f->kappa * d->dTdn[i], h = q / dT;
         fprintf(fp, "%.*g\t%.*g\t%.*g\t%.*g\t%.*g\t%.*g\t%.*g\n", precision, d->x3[3 * i], precision,

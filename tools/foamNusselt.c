@@ -50,7 +50,7 @@ int main(int argc, char **argv)
         i++;
         if (!strcmp(o, "-case")) c = v;
         else if (!strcmp(o, "-time")) time = v;
-        else if (!strcmp(o, "-patch")) snprintf(f.patch, sizeof f.patch, "%s", v);
+        else if (!strcmp(o, "-patch")) snprintf(f.c.patch, sizeof f.c.patch, "%s", v);
         else if (!strcmp(o, "-length") && number(v, &f.length) && f.length > 0) ;
         else if (!strcmp(o, "-T1") && number(v, &f.T1)) f.has_T1 = 1;
         else if (!strcmp(o, "-T2") && number(v, &f.T2)) f.has_T2 = 1;
@@ -59,7 +59,7 @@ int main(int argc, char **argv)
             return 1;
         }
     }
-    if (!f.patch[0] || !(f.length > 0))
+    if (!f.c.patch[0] || !(f.length > 0))
         return die("-patch and -length are required");
     ump_err err;
     char dir[4096];
@@ -77,10 +77,10 @@ int main(int argc, char **argv)
     }
     int pi = -1;
     for (int p = 0; p < pm->npatches; p++)
-        if (!strcmp(pm->patch[p].name, f.patch))
+        if (!strcmp(pm->patch[p].name, f.c.patch))
             pi = p;
     if (pi < 0) {
-        fprintf(stderr, "foamNusselt: %s: no patch '%s'\n", dir, f.patch);
+        fprintf(stderr, "foamNusselt: %s: no patch '%s'\n", dir, f.c.patch);
         return 1;
     }
     char **names = NULL;

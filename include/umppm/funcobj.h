@@ -4,7 +4,7 @@
  * writing live here; the numbers come from the solver (sol_wall_dTdn,
  * sol_face_T) through the application.
  *
- * One type so far, the wall Nusselt number of Eqs. 43-45 of seed 000:
+ * Two types. The wall Nusselt number of Eqs. 43-45 of seed 000:
  *
  *   functions
  *   {
@@ -28,8 +28,31 @@
  * objects: postProcessing/<name>/<startTime>/nusseltNumber.dat (time
  * series: Time Nu_avg h_avg q_avg Nu_min Nu_max), and at every write time
  * postProcessing/<name>/<time>/<patch>.dat (per face: x y z dT/dn q h Nu).
+ *
+ * And OpenFOAM's surfaceFieldValue on a patch, so that one controlDict
+ * entry gives the same time series from umppmFoam and from icoFoam:
+ *
+ *       pInlet
+ *       {
+ *           type          surfaceFieldValue;
+ *           libs          ("libfieldFunctionObjects.so");   // for OpenFOAM
+ *           regionType    patch;        // the only region type here
+ *           name          inlet;
+ *           operation     areaAverage;  // sum average areaAverage
+ *                                       // areaIntegrate min max none
+ *           fields        (p U);        // p U, and T p_rgh when buoyant
+ *           writeFields   false;        // must be false (or absent)
+ *           writeControl  timeStep;
+ *           writeInterval 1;
+ *       }
+ *
+ * -> postProcessing/<name>/<startTime>/surfaceFieldValue.dat, OpenFOAM's
+ * layout: "# Region type : patch <name>", "# Faces : n", "# Area : A",
+ * "# Time <TAB> areaAverage(p) ...", then one row per evaluation (vectors
+ * as "(x y z)"). Face areas are 3-D (edge length x mesh thickness), as
+ * OpenFOAM's.
  * Entries of other types are listed in fob_list.ignored for a warning
- * (OpenFOAM's own function objects do not run in umppmFoam).
+ * (OpenFOAM's other function objects do not run in umppmFoam).
  */
 #ifndef UMPPM_FUNCOBJ_H
 #define UMPPM_FUNCOBJ_H
@@ -37,22 +60,41 @@
 #include <stdio.h>
 #include "umppm/ump.h"
 
-typedef struct fob_nusselt {
+/* What every function object has: its name, when it writes, its file. */
+typedef struct fob_common {
     char name[128];
-    char patch[128];
-    double length, kappa;
-    double T1, T2;
-    int has_T1, has_T2;
-    int snGrad;              /* 0: MLS gradient (default), 1: snGrad */
+    char patch[128];         /* the patch it works on */
     int on_write_time;       /* writeControl writeTime */
     long interval;           /* writeControl timeStep: every interval steps */
     FILE *fp;                /* the open time series */
     char path[4400];
+} fob_common;
+
+typedef struct fob_nusselt {
+    fob_common c;
+    double length, kappa;
+    double T1, T2;
+    int has_T1, has_T2;
+    int snGrad;              /* 0: MLS gradient (default), 1: snGrad */
 } fob_nusselt;
+
+typedef enum fob_op {
+    FOB_NONE, FOB_SUM, FOB_AVERAGE, FOB_AREA_AVERAGE, FOB_AREA_INTEGRATE, FOB_MIN, FOB_MAX
+} fob_op;
+
+#define FOB_MAX_FIELDS 8
+typedef struct fob_sfv {
+    fob_common c;
+    fob_op op;
+    int nfields;
+    char field[FOB_MAX_FIELDS][32];
+} fob_sfv;
 
 typedef struct fob_list {
     fob_nusselt *nu;
     int n;
+    fob_sfv *sf;
+    int nsf;
     char ignored[512];       /* "name (type), ..." of entries not run here */
 } fob_list;
 
@@ -77,7 +119,7 @@ typedef struct fob_result {
 /* Eqs. 43-45 over the faces (T1, T2 defaults: area-mean Tf and t_ref). */
 fob_result fob_nusselt_eval(const fob_nusselt *f, const fob_faces *d, double t_ref);
 /* Does this step (1-based index) write the time series? */
-int fob_due(const fob_nusselt *f, long step, int write_time);
+int fob_due(const fob_common *f, long step, int write_time);
 /* Append one line to postProcessing/<name>/<start_time>/nusseltNumber.dat
  * (created with its header on the first call; an existing file of an
  * earlier run is kept and the new one gets the suffix _<start_time>, as
@@ -87,5 +129,22 @@ ump_status fob_nusselt_append(fob_nusselt *f, const char *case_dir, const char *
 /* postProcessing/<name>/<time>/<patch>.dat with the local values. */
 ump_status fob_nusselt_local(const fob_nusselt *f, const char *case_dir, const char *time_name,
                              const fob_faces *d, const fob_result *r, int precision, ump_err *err);
+
+/* One field on the faces of a surfaceFieldValue's patch. */
+typedef struct fob_patch_field {
+    size_t n;
+    int ncomp;               /* 1 scalar, 3 vector */
+    const double *area;      /* [n] 3-D face areas */
+    const double *v;         /* [n*ncomp] face values */
+} fob_patch_field;
+
+/* Append one row (time, then the operation on each field in order; vals
+ * [k] holds field k) to postProcessing/<name>/<start_time>/
+ * surfaceFieldValue.dat, created with OpenFOAM's header on the first call. */
+ump_status fob_sfv_append(fob_sfv *f, const char *case_dir, const char *start_time, double t,
+                          const fob_patch_field *vals, int precision, ump_err *err);
+/* The operation's result on one field (out[ncomp]). */
+void fob_sfv_eval(const fob_sfv *f, const fob_patch_field *d, double *out);
+const char *fob_op_name(fob_op op);
 
 #endif
