@@ -43,27 +43,31 @@ int main(int argc, char **argv)
     }
     pmesh *pa = NULL, *pb = NULL;
     mesh2d *ma = NULL, *mb = NULL;
-    if (!load(argv[1], &pa, &ma) || !load(argv[3], &pb, &mb))
-        return 1;
+    int rc = 0;
+    if (!load(argv[1], &pa, &ma) || !load(argv[3], &pb, &mb)) {
+        rc = 1;
+        goto done;
+    }
     double L = 0;
     for (ump_idx c = 0; c < ma->ncells; c++)
         L = fmax(L, fmax(fabs(ma->cx[c]), fabs(ma->cy[c])));
     if (ma->ncells != mb->ncells) {
         fprintf(stderr, "foamCompare: mesh mismatch: %ld cells vs %ld cells\n", (long)ma->ncells,
                 (long)mb->ncells);
-        return 2;
+        rc = 2;
+        goto done;
     }
     for (ump_idx c = 0; c < ma->ncells; c++)
         if (hypot(ma->cx[c] - mb->cx[c], ma->cy[c] - mb->cy[c]) > 1e-9 * (L > 0 ? L : 1)) {
             fprintf(stderr, "foamCompare: mesh mismatch: cell %ld centroids differ\n", (long)c);
-            return 2;
+            rc = 2;
+            goto done;
         }
     const char *deflt[] = {"U", "p"};
     int nf = argc > 5 ? argc - 5 : 2;
     const char **fields = argc > 5 ? (const char **)argv + 5 : deflt;
     printf("%-8s %14s %14s %12s %12s %12s\n", "field", "L2(diff)", "Linf(diff)", "L2 rel", "Linf rel",
            "L2/range");
-    int rc = 0;
     for (int i = 0; i < nf; i++) {
         char p1[4400], p2[4400];
         snprintf(p1, sizeof p1, "%s/%s/%s", argv[1], argv[2], fields[i]);
@@ -111,6 +115,7 @@ int main(int argc, char **argv)
         fld_free(&a);
         fld_free(&b);
     }
+done:
     mesh_free(&ma);
     mesh_free(&mb);
     pmesh_free(&pa);
