@@ -47,10 +47,9 @@ typedef struct app {
     fld_field *U, *p, *T, *prgh;   /* T, p_rgh: buoyant only */
     sol *S;
     fob_list fo;                    /* controlDict function objects */
-    double *fo_x3, *fo_area, *fo_dTdn, *fo_Tf; /* per-patch scratch */
-    double *fo_val;                             /* [3 * FOB_MAX_FIELDS * fo_cap] */
-    ump_idx *fo_face;
-    size_t fo_cap;
+    double *fo_dTdn, *fo_Tf;        /* per-face scratch [fo_cap] */
+    double *fo_val;                 /* [3 * FOB_MAX_FIELDS * fo_cap] */
+    size_t fo_cap;                  /* the largest function-object patch */
     char **written;          /* purgeWrite bookkeeping */
     int nwritten;
 } app;
@@ -70,12 +69,9 @@ static void app_free(app *a)
     fld_free(&a->T);
     fld_free(&a->prgh);
     fob_free(&a->fo);
-    free(a->fo_x3);
-    free(a->fo_area);
     free(a->fo_dTdn);
     free(a->fo_Tf);
     free(a->fo_val);
-    free(a->fo_face);
     mesh_free(&a->m);
     pmesh_free(&a->pm);
     for (int i = 0; i < a->nwritten; i++)
@@ -386,64 +382,84 @@ static ump_status read_buoyant(app *a, const char *tname, ump_err *err)
     return UMP_OK;
 }
 
-/* The 2-D boundary faces (f >= ninternal) of function object f's patch in
- * a->fo_face[0..*n), their areas (3-D) and centres in a->fo_area, fo_x3. */
-static ump_status fo_patch_faces(app *a, const fob_common *f, size_t *n, ump_err *err)
+/* Mesh-only, once at the start: function object c's patch, its 2-D
+ * boundary faces (f >= ninternal), their 3-D areas and centres. */
+static ump_status fo_resolve(app *a, fob_common *c, ump_err *err)
 {
     int pi = -1;
     for (int p = 0; p < a->pm->npatches; p++)
-        if (strcmp(a->pm->patch[p].name, f->patch) == 0)
+        if (strcmp(a->pm->patch[p].name, c->patch) == 0)
             pi = p;
     if (pi < 0)
         return UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/controlDict: function object '%s': no patch '%s' "
-                        "in constant/polyMesh/boundary", a->case_dir, f->name, f->patch);
+                        "in constant/polyMesh/boundary", a->case_dir, c->name, c->patch);
     const pmesh_patch *pp = &a->pm->patch[pi];
     const mesh2d *m = a->m;
-    if ((size_t)pp->n > a->fo_cap) {
-        size_t c = (size_t)pp->n;
-        double **arr[] = {&a->fo_x3, &a->fo_area, &a->fo_dTdn, &a->fo_Tf, &a->fo_val};
-        size_t len[] = {3 * c, c, c, c, 3 * FOB_MAX_FIELDS * c};
-        for (size_t i = 0; i < 5; i++) {
-            free(*arr[i]);
-            if (!(*arr[i] = ump_alloc_array(len[i], sizeof(double))))
-                return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
-        }
-        free(a->fo_face);
-        if (!(a->fo_face = ump_alloc_array(c, sizeof *a->fo_face)))
-            return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
-        a->fo_cap = c;
+    size_t cap = (size_t)pp->n, n = 0;
+    ump_idx *face = ump_alloc_array(cap ? cap : 1, sizeof *face);
+    double *area = ump_alloc_array(cap ? cap : 1, sizeof *area), *x3 = ump_alloc_array(3 * cap + 3, sizeof *x3);
+    ump_status rc = UMP_OK;
+    if (!face || !area || !x3) {
+        rc = UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
+        goto done;
     }
-    size_t k = 0;
     for (ump_idx i = 0; i < pp->n; i++) {
-        ump_idx f2 = m->pmface_to_face[pp->start + i];
-        if (f2 < m->ninternal)
+        ump_idx f = m->pmface_to_face[pp->start + i];
+        if (f < m->ninternal)
             continue;
-        a->fo_face[k] = f2;
-        mesh_to3d(m, m->fx[f2], m->fy[f2], a->fo_x3 + 3 * k);
-        a->fo_area[k] = m->len[f2] * (m->zmax - m->zmin);
-        k++;
+        face[n] = f;
+        mesh_to3d(m, m->fx[f], m->fy[f], x3 + 3 * n);
+        area[n] = m->len[f] * (m->zmax - m->zmin);
+        n++;
     }
-    if (k == 0)
-        return UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/controlDict: function object '%s': patch '%s' has no "
-                        "boundary faces in 2-D (empty or cyclic)", a->case_dir, f->name, f->patch);
-    *n = k;
+    if (n == 0)
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/controlDict: function object '%s': patch '%s' has no "
+                      "boundary faces in 2-D (empty or cyclic)", a->case_dir, c->name, c->patch);
+    else
+        rc = fob_set_faces(c, n, face, area, x3, err);
+    if (n > a->fo_cap)
+        a->fo_cap = n;
+done:
+    free(face);
+    free(area);
+    free(x3);
+    return rc;
+}
+
+/* Resolve every function object's patch, check its fields, size the
+ * per-face scratch. */
+static ump_status fo_setup(app *a, ump_err *err)
+{
+    for (int i = 0; i < a->fo.n; i++)
+        UMP_CALL(fo_resolve(a, &a->fo.nu[i].c, err));
+    for (int i = 0; i < a->fo.nsf; i++) {
+        fob_sfv *f = &a->fo.sf[i];
+        UMP_CALL(fo_resolve(a, &f->c, err));
+        for (int j = 0; j < f->nfields; j++)
+            if (!a->T && (f->field[j] == FOB_FIELD_T || f->field[j] == FOB_FIELD_P_RGH))
+                return UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/controlDict: function object '%s': field '%s' "
+                                "exists only in a buoyant case (constant/g)", a->case_dir, f->c.name,
+                                fob_field_name(f->field[j]));
+    }
+    size_t c = a->fo_cap ? a->fo_cap : 1;
+    if (!(a->fo_dTdn = ump_alloc_array(c, sizeof(double))) || !(a->fo_Tf = ump_alloc_array(c, sizeof(double))) ||
+        !(a->fo_val = ump_alloc_array(3 * FOB_MAX_FIELDS * c, sizeof(double))))
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
     return UMP_OK;
 }
 
-/* Patch data of a Nusselt function object. */
+/* Patch data of a Nusselt function object for this step. */
 static ump_status fo_nusselt_faces(app *a, const fob_nusselt *f, fob_faces *d, ump_err *err)
 {
-    size_t n;
-    UMP_CALL(fo_patch_faces(a, &f->c, &n, err));
-    for (size_t k = 0; k < n; k++) {
-        ump_idx f2 = a->fo_face[k];
-        UMP_CALL(sol_wall_dTdn(a->S, f2, f->snGrad ? SOL_GRAD_SNGRAD : SOL_GRAD_MLS, &a->fo_dTdn[k], err));
-        a->fo_area[k] = a->m->len[f2];
-        a->fo_Tf[k] = sol_face_T(a->S, f2);
+    const fob_common *c = &f->c;
+    for (size_t k = 0; k < c->nface; k++) {
+        UMP_CALL(sol_wall_dTdn(a->S, c->face[k], f->snGrad ? SOL_GRAD_SNGRAD : SOL_GRAD_MLS, &a->fo_dTdn[k],
+                               err));
+        a->fo_Tf[k] = sol_face_T(a->S, c->face[k]);
     }
-    d->n = n;
-    d->x3 = a->fo_x3;
-    d->area = a->fo_area;
+    d->n = c->nface;
+    d->x3 = c->x3;
+    d->area = c->area;
     d->dTdn = a->fo_dTdn;
     d->Tf = a->fo_Tf;
     return UMP_OK;
@@ -452,39 +468,35 @@ static ump_status fo_nusselt_faces(app *a, const fob_nusselt *f, fob_faces *d, u
 /* The face values of surfaceFieldValue f's fields, as written in the time
  * directories (p and p_rgh of a buoyant run as buoyantBoussinesqPimpleFoam
  * defines them). */
-static ump_status fo_sfv_values(app *a, const fob_sfv *f, fob_patch_field *vals, ump_err *err)
+static void fo_sfv_values(app *a, const fob_sfv *f, fob_patch_field *vals)
 {
-    size_t n;
-    UMP_CALL(fo_patch_faces(a, &f->c, &n, err));
+    const fob_common *c = &f->c;
     for (int j = 0; j < f->nfields; j++) {
-        const char *name = f->field[j];
-        int is_U = strcmp(name, "U") == 0, is_p = strcmp(name, "p") == 0;
-        int is_T = strcmp(name, "T") == 0, is_prgh = strcmp(name, "p_rgh") == 0;
-        if (!is_U && !is_p && !((is_T || is_prgh) && a->T))
-            return UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/controlDict: function object '%s': field '%s' is "
-                            "not one of: U p%s", a->case_dir, f->c.name, name, a->T ? " T p_rgh" : "");
-        double *v = a->fo_val + 3 * (size_t)j * a->fo_cap;
-        for (size_t k = 0; k < n; k++) {
-            ump_idx f2 = a->fo_face[k];
-            double u, w, pv, prgh;
-            sol_face_values(a->S, f2, &u, &w, &pv);
-            if (a->T)
-                sol_buoyant_pressure(a->S, -1, f2, &pv, &prgh);
-            if (is_U) {
-                double *V = v + 3 * k;
-                V[a->m->normal] = 0;
-                V[a->m->ax[0]] = u;
-                V[a->m->ax[1]] = w;
-            } else {
-                v[k] = is_p ? pv : is_prgh ? prgh : sol_face_T(a->S, f2);
+        vals[j].n = c->nface;
+        vals[j].ncomp = f->field[j] == FOB_FIELD_U ? 3 : 1;
+        vals[j].area = c->area;
+        vals[j].v = a->fo_val + 3 * (size_t)j * a->fo_cap;
+    }
+    for (size_t k = 0; k < c->nface; k++) {
+        ump_idx fc = c->face[k];
+        double u, w, p, prgh = 0;
+        sol_face_values(a->S, fc, &u, &w, &p);
+        if (a->T)
+            sol_buoyant_pressure(a->S, -1, fc, &p, &prgh);
+        for (int j = 0; j < f->nfields; j++) {
+            double *v = (double *)vals[j].v;
+            switch (f->field[j]) {
+            case FOB_FIELD_U:
+                v[3 * k + (size_t)a->m->normal] = 0;
+                v[3 * k + (size_t)a->m->ax[0]] = u;
+                v[3 * k + (size_t)a->m->ax[1]] = w;
+                break;
+            case FOB_FIELD_P: v[k] = p; break;
+            case FOB_FIELD_P_RGH: v[k] = prgh; break;
+            case FOB_FIELD_T: v[k] = sol_face_T(a->S, fc); break;
             }
         }
-        vals[j].n = n;
-        vals[j].ncomp = is_U ? 3 : 1;
-        vals[j].area = a->fo_area;
-        vals[j].v = v;
     }
-    return UMP_OK;
 }
 
 /* Run the function objects after a step (and at the start, step 0). */
@@ -511,7 +523,7 @@ static ump_status run_functions(app *a, const rt_time *t, long step, const char 
         if (step == 0 || !fob_due(&f->c, step, t->write_time)) /* OpenFOAM's: not at the start */
             continue;
         fob_patch_field vals[FOB_MAX_FIELDS];
-        UMP_CALL(fo_sfv_values(a, f, vals, err));
+        fo_sfv_values(a, f, vals);
         UMP_CALL(fob_sfv_append(f, a->case_dir, start_name, t->value, vals, a->ctl.write_precision, err));
         if (f->op == FOB_NONE)
             continue;
@@ -519,7 +531,7 @@ static ump_status run_functions(app *a, const rt_time *t, long step, const char 
         for (int j = 0; j < f->nfields; j++) {
             double out[3];
             fob_sfv_eval(f, &vals[j], out);
-            printf("    %s(%s) of %s = ", fob_op_name(f->op), f->c.patch, f->field[j]);
+            printf("    %s(%s) of %s = ", fob_op_name(f->op), f->c.patch, fob_field_name(f->field[j]));
             if (vals[j].ncomp == 1)
                 printf("%g\n", out[0]);
             else
@@ -590,7 +602,7 @@ ump_status app_run(const char *case_dir, ump_err *err)
     }
     printf("\nStarting time loop\n\n");
     long step = 0;
-    if ((rc = run_functions(&a, &t, 0, tname, err)) != UMP_OK)
+    if ((rc = fo_setup(&a, err)) != UMP_OK || (rc = run_functions(&a, &t, 0, tname, err)) != UMP_OK)
         goto done;
     while (rt_running(&t)) {
         sol_courant(a.S, t.delta_t, &co_mean, &co_max);

@@ -76,6 +76,13 @@ const char *fob_op_name(fob_op op)
     return op_names[op];
 }
 
+static const char *const field_names[] = {"U", "p", "T", "p_rgh"};
+
+const char *fob_field_name(fob_field f)
+{
+    return field_names[f];
+}
+
 static ump_status read_sfv(const foam_dict *d, const char *name, fob_sfv *f, ump_err *err)
 {
     memset(f, 0, sizeof *f);
@@ -115,7 +122,13 @@ static ump_status read_sfv(const foam_dict *d, const char *name, fob_sfv *f, ump
             if (f->nfields == FOB_MAX_FIELDS)
                 return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: function object '%s': more than %d fields",
                                 e->file, e->line, name, FOB_MAX_FIELDS);
-            snprintf(f->field[f->nfields++], sizeof f->field[0], "%s", e->tok[i].v.str);
+            size_t j = 0;
+            while (j < sizeof field_names / sizeof *field_names && strcmp(e->tok[i].v.str, field_names[j]) != 0)
+                j++;
+            if (j == sizeof field_names / sizeof *field_names)
+                return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: function object '%s': field '%s' is not one of: "
+                                "U p T p_rgh", e->file, e->tok[i].line, name, e->tok[i].v.str);
+            f->field[f->nfields++] = (fob_field)j;
         }
     if (e->ntok < 2 || i != e->ntok - 1 || e->tok[i].type != FOAM_TOK_PUNCT || e->tok[i].v.punct != ')' ||
         f->nfields == 0)
@@ -182,19 +195,47 @@ ump_status fob_read(const char *case_dir, fob_list *L, ump_err *err)
     return rc;
 }
 
+static void free_common(fob_common *c)
+{
+    if (c->fp)
+        fclose(c->fp);
+    free(c->face);
+    free(c->area);
+    free(c->x3);
+    c->fp = NULL;
+    c->face = NULL;
+    c->area = c->x3 = NULL;
+}
+
 void fob_free(fob_list *L)
 {
     for (int i = 0; i < L->n; i++)
-        if (L->nu[i].c.fp)
-            fclose(L->nu[i].c.fp);
+        free_common(&L->nu[i].c);
     for (int i = 0; i < L->nsf; i++)
-        if (L->sf[i].c.fp)
-            fclose(L->sf[i].c.fp);
+        free_common(&L->sf[i].c);
     free(L->nu);
     free(L->sf);
     L->nu = NULL;
     L->sf = NULL;
     L->n = L->nsf = 0;
+}
+
+ump_status fob_set_faces(fob_common *c, size_t n, const ump_idx *face, const double *area, const double *x3,
+                         ump_err *err)
+{
+    free(c->face);
+    free(c->area);
+    free(c->x3);
+    c->face = ump_alloc_array(n, sizeof *c->face);
+    c->area = ump_alloc_array(n, sizeof *c->area);
+    c->x3 = ump_alloc_array(3 * n, sizeof *c->x3);
+    if (!c->face || !c->area || !c->x3)
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "function object '%s': out of memory", c->name);
+    memcpy(c->face, face, n * sizeof *face);
+    memcpy(c->area, area, n * sizeof *area);
+    memcpy(c->x3, x3, 3 * n * sizeof *x3);
+    c->nface = n;
+    return UMP_OK;
 }
 
 fob_result fob_nusselt_eval(const fob_nusselt *f, const fob_faces *d, double t_ref)
@@ -324,7 +365,7 @@ ump_status fob_sfv_append(fob_sfv *f, const char *case_dir, const char *start_ti
                     "# Scale factor: 1\n# Time        ",
                 f->c.patch, vals[0].n, precision, A);
         for (int k = 0; k < f->nfields; k++)
-            fprintf(fp, "\t%s(%s)", fob_op_name(f->op), f->field[k]);
+            fprintf(fp, "\t%s(%s)", fob_op_name(f->op), fob_field_name(f->field[k]));
         fprintf(fp, "\n");
     }
     fprintf(fp, "%-14.*g", precision, t);

@@ -60,7 +60,8 @@
 #include <stdio.h>
 #include "umppm/ump.h"
 
-/* What every function object has: its name, when it writes, its file. */
+/* What every function object has: its name, when it writes, its file, and
+ * its patch's faces (mesh-only: resolved once by fob_set_faces). */
 typedef struct fob_common {
     char name[128];
     char patch[128];         /* the patch it works on */
@@ -68,6 +69,10 @@ typedef struct fob_common {
     long interval;           /* writeControl timeStep: every interval steps */
     FILE *fp;                /* the open time series */
     char path[4400];
+    size_t nface;            /* the patch's 2-D boundary faces: */
+    ump_idx *face;           /*   [nface] face indices of the 2-D mesh */
+    double *area;            /*   [nface] 3-D face areas */
+    double *x3;              /*   [3 nface] face centres */
 } fob_common;
 
 typedef struct fob_nusselt {
@@ -82,12 +87,15 @@ typedef enum fob_op {
     FOB_NONE, FOB_SUM, FOB_AVERAGE, FOB_AREA_AVERAGE, FOB_AREA_INTEGRATE, FOB_MIN, FOB_MAX
 } fob_op;
 
+/* The fields a surfaceFieldValue can take (T and p_rgh: buoyant runs). */
+typedef enum fob_field { FOB_FIELD_U, FOB_FIELD_P, FOB_FIELD_T, FOB_FIELD_P_RGH } fob_field;
+
 #define FOB_MAX_FIELDS 8
 typedef struct fob_sfv {
     fob_common c;
     fob_op op;
     int nfields;
-    char field[FOB_MAX_FIELDS][32];
+    fob_field field[FOB_MAX_FIELDS];
 } fob_sfv;
 
 typedef struct fob_list {
@@ -102,12 +110,16 @@ typedef struct fob_list {
  * empty list). Missing or bad entries are errors naming file and line. */
 ump_status fob_read(const char *case_dir, fob_list *L, ump_err *err);
 void fob_free(fob_list *L);
+/* Give function object c its patch's faces (copies of the n entries of
+ * face, area, x3). */
+ump_status fob_set_faces(fob_common *c, size_t n, const ump_idx *face, const double *area, const double *x3,
+                         ump_err *err);
 
 /* Per-face data of a patch for one evaluation. */
 typedef struct fob_faces {
     size_t n;
     const double *x3;        /* [3n] face centres */
-    const double *area;      /* [n] face areas (lengths in 2-D) */
+    const double *area;      /* [n] face areas */
     const double *dTdn;      /* [n] wall-normal gradient, outward */
     const double *Tf;        /* [n] face temperatures */
 } fob_faces;
@@ -146,5 +158,6 @@ ump_status fob_sfv_append(fob_sfv *f, const char *case_dir, const char *start_ti
 /* The operation's result on one field (out[ncomp]). */
 void fob_sfv_eval(const fob_sfv *f, const fob_patch_field *d, double *out);
 const char *fob_op_name(fob_op op);
+const char *fob_field_name(fob_field f);
 
 #endif

@@ -37,7 +37,7 @@ static void test_read_surface_field_value(void **state)
     assert_string_equal(L.sf[0].c.patch, "inlet");
     assert_int_equal(L.sf[0].op, FOB_AREA_AVERAGE);
     assert_int_equal(L.sf[0].nfields, 2);
-    assert_string_equal(L.sf[0].field[1], "U");
+    assert_int_equal(L.sf[0].field[1], FOB_FIELD_U);
     assert_int_equal(L.sf[0].c.interval, 5);
     assert_non_null(strstr(L.ignored, "probes1 (probes)"));
     assert_true(fob_due(&L.sf[0].c, 10, 0));
@@ -71,6 +71,8 @@ static void test_bad_entries(void **state)
                  "expected 'fields (f1 f2 ...);'");
     expect_error("a { type surfaceFieldValue; regionType patch; name in; operation sum; fields (); }\n",
                  "expected 'fields (f1 f2 ...);'");
+    expect_error("a { type surfaceFieldValue; regionType patch; name in; operation sum; fields (p k); }\n",
+                 "field 'k' is not one of: U p T p_rgh");
     expect_error("a { type surfaceFieldValue; regionType patch; name in; operation sum; fields (p);\n"
                  " writeFields true; }\n",
                  "writeFields true is not supported");
@@ -114,8 +116,8 @@ static void test_append(void **state)
     snprintf(f.c.patch, sizeof f.c.patch, "outlet");
     f.op = FOB_AREA_AVERAGE;
     f.nfields = 2;
-    snprintf(f.field[0], sizeof f.field[0], "p");
-    snprintf(f.field[1], sizeof f.field[1], "U");
+    f.field[0] = FOB_FIELD_P;
+    f.field[1] = FOB_FIELD_U;
     const double area[] = {0.5, 0.5}, p[] = {1, 3}, U[] = {1, 0, 0, 1, 0, 0};
     fob_patch_field vals[2] = {{2, 1, area, p}, {2, 3, area, U}};
     ump_err err;
