@@ -13,12 +13,13 @@ BUILD   ?= build/release
 OPT     ?= -O2 -g
 WERROR  ?=
 SAN     ?=
+OMP     ?= -fopenmp
 CPPFLAGS = -Iinclude -I/usr/include/suitesparse -D_XOPEN_SOURCE=700
-CFLAGS_ALL = -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wvla $(WERROR) $(OPT) $(SAN)
+CFLAGS_ALL = -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wvla $(WERROR) $(OPT) $(OMP) $(SAN)
 LDLIBS  = -lumfpack -lklu -lcholmod -lamd -lcolamd -lsuitesparseconfig -lz -lm
 TEST_LDLIBS = -lcmocka
 
-DEB_PACKAGES = build-essential clang libclang-rt-14-dev libsuitesparse-dev zlib1g-dev \
+DEB_PACKAGES = build-essential clang libclang-rt-14-dev libomp-14-dev libsuitesparse-dev zlib1g-dev \
                libcmocka-dev openfoam openfoam-examples gmsh gnuplot-nox
 
 LIB_SRC  = $(filter-out src/main.c,$(wildcard src/*.c))

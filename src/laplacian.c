@@ -146,6 +146,85 @@ static ump_status cpm_coeffs(int dim, const double *const *off, int n, double *a
     return UMP_OK;
 }
 
+/* cpm_coeffs for 2-D, the solver's case, written out: the moment matrix of
+ * p = [h, k, h^2/2, hk, k^2/2] (hat units) is assembled from the 12
+ * weighted moments S_ab = sum_j w_j^2 h^a k^b, 2 <= a + b <= 4, and only
+ * the one combined column q = M^{-1} (e_hh + e_kk) is applied (Eq. 16:
+ * lap = phi_xx + phi_yy). Same numbers as the generic loop up to rounding. */
+static ump_status cpm_coeffs2(const double *h, const double *k, int n, double *a, ump_err *err)
+{
+    double r2max = 0;
+    for (int j = 0; j < n; j++) {
+        double r2 = h[j] * h[j] + k[j] * k[j];
+        r2max = r2 > r2max ? r2 : r2max;
+    }
+    if (!(r2max > 0) || !(r2max < INFINITY))
+        return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                        "CPM Laplacian: %d neighbours, none at a finite non-zero distance", n);
+    double iL = 1 / sqrt(r2max), rmin2 = CPM_COINCIDENT * CPM_COINCIDENT;
+    enum { S20, S11, S02, S30, S21, S12, S03, S40, S31, S22, S13, S04, NS };
+    double S[NS] = {0};
+    int nused = 0;
+    for (int j = 0; j < n; j++) {
+        double X = h[j] * iL, Y = k[j] * iL, r2 = X * X + Y * Y;
+        if (r2 < rmin2) {
+            a[j] = 0; /* coincident: no information (and an infinite weight) */
+            continue;
+        }
+        double w2 = 1 / (r2 * r2 * r2); /* w_j^2 = 1/r^6 */
+        double wx = w2 * X, wy = w2 * Y;
+        double wxx = wx * X, wxy = wx * Y, wyy = wy * Y;
+        double wxxx = wxx * X, wxxy = wxx * Y, wxyy = wxy * Y, wyyy = wyy * Y;
+        S[S20] += wxx;
+        S[S11] += wxy;
+        S[S02] += wyy;
+        S[S30] += wxxx;
+        S[S21] += wxxy;
+        S[S12] += wxyy;
+        S[S03] += wyyy;
+        S[S40] += wxxx * X;
+        S[S31] += wxxx * Y;
+        S[S22] += wxxy * Y;
+        S[S13] += wxyy * Y;
+        S[S04] += wyyy * Y;
+        a[j] = w2; /* parked until q is known */
+        nused++;
+    }
+    if (nused < 5)
+        return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                        "CPM Laplacian: %d distinct neighbours, at least 5 needed in 2-D", nused);
+    /* M = sum_j w_j^2 p_j p_j^T, Eq. 17 (upper triangle) */
+    double m[SPD_MAX][SPD_MAX];
+    m[0][0] = S[S20];       m[0][1] = S[S11];       m[0][2] = 0.5 * S[S30];
+    m[0][3] = S[S21];       m[0][4] = 0.5 * S[S12];
+    m[1][1] = S[S02];       m[1][2] = 0.5 * S[S21]; m[1][3] = S[S12];
+    m[1][4] = 0.5 * S[S03];
+    m[2][2] = 0.25 * S[S40]; m[2][3] = 0.5 * S[S31]; m[2][4] = 0.25 * S[S22];
+    m[3][3] = S[S22];        m[3][4] = 0.5 * S[S13];
+    m[4][4] = 0.25 * S[S04];
+    spd_small f;
+    double rc = spd_factor_invert_fixed(&f, 5, m);
+    if (rc < LAP_RCOND_MIN)
+        return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                        "CPM Laplacian: moment matrix singular (rcond %.3g, %d neighbours "
+                        "not spread in 2-D)", rc, nused);
+    /* q = M^{-1} (e_2 + e_4): the rows of phi_xx and phi_yy, Eq. 16 */
+    double q[5], c2[5], c4[5];
+    spd_inv_column(&f, 2, c2);
+    spd_inv_column(&f, 4, c4);
+    for (int r = 0; r < 5; r++)
+        q[r] = c2[r] + c4[r];
+    double il2 = 1 / r2max; /* a_j = a_hat_j / L^2 */
+    for (int j = 0; j < n; j++) {
+        if (a[j] == 0)
+            continue;
+        double X = h[j] * iL, Y = k[j] * iL;
+        double s = q[0] * X + q[1] * Y + q[2] * 0.5 * X * X + q[3] * X * Y + q[4] * 0.5 * Y * Y;
+        a[j] *= s * il2;
+    }
+    return UMP_OK;
+}
+
 /* The kernel of MPS, PS and IPS, seed 001 Eq. 3: w = max(r_e/r - 1, 0),
  * and 0 on the particle itself. */
 static double kernel(double r, double re)
@@ -222,7 +301,7 @@ ump_status lap_coeffs_d(const lap_params *p, int dim, const double *const *off, 
         UMP_CHECK(off && off[d] && a, err, UMP_ERR_INPUT, "Laplacian: offsets or coefficients missing");
     switch (p->model) {
     case LAP_CPM:
-        return cpm_coeffs(dim, off, n, a, err);
+        return dim == 2 ? cpm_coeffs2(off[0], off[1], n, a, err) : cpm_coeffs(dim, off, n, a, err);
     case LAP_MPS:
     case LAP_PS:
     case LAP_IPS:

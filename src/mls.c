@@ -2,12 +2,14 @@
  * mls.c -- moving-least-squares interpolation weights, Eqs. (27)-(35) of
  * seed 000 (Ng, Sheu & Hwang 2016; Tabbara, Blacker & Belytschko 1994).
  *
- * Workload: one call per mesh face, per centroid and per particle, every
- * time step (Steps 8 and 10), with n ~ 10-40 samples from the N1 u N2
- * stencil. So: no allocation, no per-sample scratch (the weights are parked
- * in the output array c0 between the two passes), and the normal matrix is
- * assembled from the 15 distinct weighted moments sum_j w_j X^a Y^b
- * (a + b <= 4) rather than 21 separate products.
+ * Workload: one call per mesh face and per centroid every time step
+ * (Step 8), with n ~ 10-40 samples from the N1 u N2 stencil. So: no
+ * allocation, no per-sample scratch (the weights are parked in the output
+ * array c0 between the two passes), the normal matrix is assembled from
+ * the 15 distinct weighted moments sum_j w_j X^a Y^b (a + b <= 4), summed
+ * in one unrolled pass (14 products and 15 additions per sample), the 6x6
+ * inverse comes from the triangular factor (spd_small.h), and value-only
+ * fits (cx == NULL) skip the derivative dot products.
  *
  * Scale: coordinates are normalised, X = dx/x_m, Y = dy/y_m (Eq. 35's own
  * scales), so |X|, |Y| < 1 and the normal matrix does not depend on the mesh
@@ -26,72 +28,162 @@
 
 #include <math.h>
 
-/* Powers 0..4 of X and Y. */
-static void powers(double X, double Y, double xp[5], double yp[5])
-{
-    xp[0] = yp[0] = 1;
-    for (int a = 1; a < 5; a++) {
-        xp[a] = xp[a - 1] * X;
-        yp[a] = yp[a - 1] * Y;
-    }
-}
-
-/* Exponents (a, b) of the quadratic basis R = [1 x y xy x^2 y^2], Eq. (28);
- * the linear basis is its first three entries. */
-static const int EXPX[6] = {0, 1, 0, 1, 2, 0};
-static const int EXPY[6] = {0, 0, 1, 1, 0, 2};
-
 /* Eq. (35) in normalised coordinates, clamped to [MLS_W_MIN, MLS_W_MAX]:
- * w = 1/rho - 1, rho = sqrt(X^2 + Y^2). The cap is applied through rho
- * (rho <= 1/(1 + w_max)) so a sample exactly on the target never divides
- * by zero; the floor keeps the corner samples (rho >= 1, where Eq. 35 is
- * zero or negative) in the fit with a small positive weight. The clamped
- * weight is continuous in the sample positions. */
-static double weight(double X, double Y)
+ * w = 1/rho - 1, rho = sqrt(X^2 + Y^2). A sample on the target (rho = 0,
+ * 1/rho = inf) and every rho <= 1/(1 + w_max) get the cap, so nothing
+ * divides by zero; the floor keeps the corner samples (rho >= 1, where
+ * Eq. 35 is zero or negative) in the fit with a small positive weight. The
+ * clamped weight is continuous in the sample positions. Written with
+ * conditional expressions (minsd/maxsd), not fmin/fmax calls. */
+static inline double weight(double X, double Y)
 {
-    double rho = sqrt(X * X + Y * Y);
-    double w = rho <= 1 / (1 + MLS_W_MAX) ? MLS_W_MAX : 1 / rho - 1;
+    double w = 1 / sqrt(X * X + Y * Y) - 1;
+    w = w < MLS_W_MAX ? w : MLS_W_MAX;
     return w > MLS_W_MIN ? w : MLS_W_MIN;
 }
 
-/* Solve the fit with the first nb (6 or 3) basis functions; on success write
- * the coefficients and return 1. mom[a][b] = sum_j w_j X^a Y^b. */
-static int fit(int nb, double mom[5][5], const double *dx, const double *dy, int n,
-               double xm, double ym, double *c0, double *cx, double *cy, double *rcond)
+/* The 15 weighted moments sum_j w_j X^a Y^b, a + b <= 4, by degree:
+ * m[0] = 1; m[1..2] = X, Y; m[3..5] = XX, XY, YY; m[6..9] = XXX, XXY, XYY,
+ * YYY; m[10..14] = X^4, X^3Y, X^2Y^2, XY^3, Y^4. */
+enum { M1, MX, MY, MXX, MXY, MYY, MXXX, MXXY, MXYY, MYYY, MX4, MX3Y, MX2Y2, MXY3, MY4, NMOM };
+
+/* Normal matrix of the first nb basis functions R = [1 X Y XY X^2 Y^2]
+ * (Eq. 28), A = sum_j w_j R_j R_j^T (Eq. 30), from the moments; its
+ * inverse and reciprocal condition number. Returns 1 if usable. */
+static int factor(int nb, const double *m, spd_small *f, double *rcond)
 {
     double a[SPD_MAX][SPD_MAX];
-    for (int i = 0; i < nb; i++) /* A = sum_j w_j R_j R_j^T, Eq. (30) */
-        for (int j = i; j < nb; j++)
-            a[i][j] = mom[EXPX[i] + EXPX[j]][EXPY[i] + EXPY[j]];
-    spd_small f;
-    *rcond = spd_factor_invert(&f, nb, a);
-    if (*rcond < MLS_RCOND_MIN)
-        return 0;
-    double q0[SPD_MAX], qx[SPD_MAX], qy[SPD_MAX];
-    spd_inv_column(&f, 0, q0);
-    spd_inv_column(&f, 1, qx);
-    spd_inv_column(&f, 2, qy);
-    double ixm = 1 / xm, iym = 1 / ym;
-    for (int i = 0; i < nb; i++) { /* back to physical derivatives */
+    a[0][0] = m[M1];  a[0][1] = m[MX];  a[0][2] = m[MY];
+    a[1][1] = m[MXX]; a[1][2] = m[MXY]; a[2][2] = m[MYY];
+    if (nb == 6) {
+        a[0][3] = m[MXY];  a[0][4] = m[MXX];  a[0][5] = m[MYY];
+        a[1][3] = m[MXXY]; a[1][4] = m[MXXX]; a[1][5] = m[MXYY];
+        a[2][3] = m[MXYY]; a[2][4] = m[MXXY]; a[2][5] = m[MYYY];
+        a[3][3] = m[MX2Y2]; a[3][4] = m[MX3Y]; a[3][5] = m[MXY3];
+        a[4][4] = m[MX4]; a[4][5] = m[MX2Y2]; a[5][5] = m[MY4];
+        *rcond = spd_factor_invert_fixed(f, 6, a);
+    } else {
+        *rcond = spd_factor_invert_fixed(f, 3, a);
+    }
+    return *rcond >= MLS_RCOND_MIN;
+}
+
+/* Per-sample coefficients from the columns q0 (value), qx, qy (derivatives,
+ * already divided by x_m, y_m) of A^{-1}: c_j = w_j R_j . q (Eqs. 32-34).
+ * The weights are parked in c0 on entry. */
+static void coeffs6(const double *restrict dx, const double *restrict dy, int n, double ixm, double iym,
+                    const double *q0, const double *qx, const double *qy, double *restrict c0,
+                    double *restrict cx, double *restrict cy)
+{
+    if (!cx && !cy) {
+        for (int j = 0; j < n; j++) {
+            double X = dx[j] * ixm, Y = dy[j] * iym;
+            c0[j] *= q0[0] + X * q0[1] + Y * q0[2] + X * Y * q0[3] + X * X * q0[4] + Y * Y * q0[5];
+        }
+        return;
+    }
+    for (int j = 0; j < n; j++) {
+        double X = dx[j] * ixm, Y = dy[j] * iym, XY = X * Y, XX = X * X, YY = Y * Y, w = c0[j];
+        c0[j] = w * (q0[0] + X * q0[1] + Y * q0[2] + XY * q0[3] + XX * q0[4] + YY * q0[5]); /* Eq. 32 */
+        if (cx)
+            cx[j] = w * (qx[0] + X * qx[1] + Y * qx[2] + XY * qx[3] + XX * qx[4] + YY * qx[5]); /* Eq. 33 */
+        if (cy)
+            cy[j] = w * (qy[0] + X * qy[1] + Y * qy[2] + XY * qy[3] + XX * qy[4] + YY * qy[5]); /* Eq. 34 */
+    }
+}
+
+static void coeffs3(const double *dx, const double *dy, int n, double ixm, double iym,
+                    const double *q0, const double *qx, const double *qy, double *c0, double *cx,
+                    double *cy)
+{
+    for (int j = 0; j < n; j++) {
+        double X = dx[j] * ixm, Y = dy[j] * iym, w = c0[j];
+        c0[j] = w * (q0[0] + X * q0[1] + Y * q0[2]);
+        if (cx)
+            cx[j] = w * (qx[0] + X * qx[1] + Y * qx[2]);
+        if (cy)
+            cy[j] = w * (qy[0] + X * qy[1] + Y * qy[2]);
+    }
+}
+
+/* Columns 0, 1, 2 of A^{-1} (value, d/dX, d/dY), the latter two scaled to
+ * physical derivatives (d/dx = (1/x_m) d/dX). */
+static void columns(const spd_small *f, int nb, double ixm, double iym, double *q0, double *qx,
+                    double *qy)
+{
+    spd_inv_column(f, 0, q0);
+    spd_inv_column(f, 1, qx);
+    spd_inv_column(f, 2, qy);
+    for (int i = 0; i < nb; i++) {
         qx[i] *= ixm;
         qy[i] *= iym;
     }
+}
+
+/* Eq. 35's scales and pass 1: weights (parked in w) and the 15 moments. */
+static void prepare(const double *restrict dx, const double *restrict dy, int n, double mean_dx,
+                    double mean_dy, double *restrict w, double *m, double *pixm, double *piym)
+{
+    /* x_m = max|dx_j| + mean dx, y_m likewise (Eq. 35). A non-positive or
+     * non-finite mean counts as 0; a zero extent (all samples on one line
+     * through the target) borrows the other one, so X, Y stay finite and the
+     * degeneracy shows up as a singular normal matrix instead. */
+    double mx = 0, my = 0;
     for (int j = 0; j < n; j++) {
-        double X = dx[j] * ixm, Y = dy[j] * iym, w = c0[j];
-        double R[6] = {1, X, Y, X * Y, X * X, Y * Y};
-        double s0 = 0, sx = 0, sy = 0;
-        for (int i = 0; i < nb; i++) {
-            s0 += R[i] * q0[i];
-            sx += R[i] * qx[i];
-            sy += R[i] * qy[i];
-        }
-        c0[j] = w * s0; /* Eq. (32): value = m1 */
-        if (cx)
-            cx[j] = w * sx; /* Eq. (33): d/dx = m2 */
-        if (cy)
-            cy[j] = w * sy; /* Eq. (34): d/dy = m3 */
+        double ax = fabs(dx[j]), ay = fabs(dy[j]);
+        mx = ax > mx ? ax : mx;
+        my = ay > my ? ay : my;
     }
-    return 1;
+    double xm = mx + (mean_dx > 0 && mean_dx < INFINITY ? mean_dx : 0);
+    double ym = my + (mean_dy > 0 && mean_dy < INFINITY ? mean_dy : 0);
+    if (!(xm > 0))
+        xm = ym > 0 ? ym : 1;
+    if (!(ym > 0))
+        ym = xm;
+    double ixm = 1 / xm, iym = 1 / ym;
+    /* scalar accumulators: they stay in registers */
+    double s1 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0, sxxx = 0, sxxy = 0, sxyy = 0, syyy = 0,
+           sx4 = 0, sx3y = 0, sx2y2 = 0, sxy3 = 0, sy4 = 0;
+    for (int j = 0; j < n; j++) {
+        double X = dx[j] * ixm, Y = dy[j] * iym;
+        double wj = weight(X, Y);
+        double wx = wj * X, wy = wj * Y;
+        double wxx = wx * X, wxy = wx * Y, wyy = wy * Y;
+        double wxxx = wxx * X, wxxy = wxx * Y, wxyy = wxy * Y, wyyy = wyy * Y;
+        s1 += wj;
+        sx += wx;
+        sy += wy;
+        sxx += wxx;
+        sxy += wxy;
+        syy += wyy;
+        sxxx += wxxx;
+        sxxy += wxxy;
+        sxyy += wxyy;
+        syyy += wyyy;
+        sx4 += wxxx * X;
+        sx3y += wxxx * Y;
+        sx2y2 += wxxy * Y;
+        sxy3 += wxyy * Y;
+        sy4 += wyyy * Y;
+        w[j] = wj;
+    }
+    m[M1] = s1;
+    m[MX] = sx;
+    m[MY] = sy;
+    m[MXX] = sxx;
+    m[MXY] = sxy;
+    m[MYY] = syy;
+    m[MXXX] = sxxx;
+    m[MXXY] = sxxy;
+    m[MXYY] = sxyy;
+    m[MYYY] = syyy;
+    m[MX4] = sx4;
+    m[MX3Y] = sx3y;
+    m[MX2Y2] = sx2y2;
+    m[MXY3] = sxy3;
+    m[MY4] = sy4;
+    *pixm = ixm;
+    *piym = iym;
 }
 
 mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx, double mean_dy,
@@ -104,50 +196,27 @@ mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx,
     info->rcond = 0;
     if (n <= 0)
         return MLS_NONE;
-
-    /* x_m = max|dx_j| + mean dx, y_m likewise (Eq. 35). A non-positive or
-     * non-finite mean counts as 0; a zero extent (all samples on one line
-     * through the target) borrows the other one, so X, Y stay finite and the
-     * degeneracy shows up as a singular normal matrix instead. */
-    double mx = 0, my = 0;
-    for (int j = 0; j < n; j++) {
-        mx = fmax(mx, fabs(dx[j]));
-        my = fmax(my, fabs(dy[j]));
-    }
-    double xm = mx + (mean_dx > 0 && isfinite(mean_dx) ? mean_dx : 0);
-    double ym = my + (mean_dy > 0 && isfinite(mean_dy) ? mean_dy : 0);
-    if (!(xm > 0))
-        xm = ym > 0 ? ym : 1;
-    if (!(ym > 0))
-        ym = xm;
-
-    /* Pass 1: weights (parked in c0) and moments mom[a][b], a + b <= 4. */
-    double mom[5][5] = {{0}};
-    double wsum = 0, ixm = 1 / xm, iym = 1 / ym;
-    for (int j = 0; j < n; j++) {
-        double X = dx[j] * ixm, Y = dy[j] * iym;
-        double w = weight(X, Y);
-        double xp[5], yp[5];
-        powers(X, Y, xp, yp);
-        for (int a = 0; a <= 4; a++) {
-            double wx = w * xp[a];
-            for (int b = 0; a + b <= 4; b++)
-                mom[a][b] += wx * yp[b];
-        }
-        c0[j] = w;
-        wsum += w;
-    }
+    /* Pass 1: weights (parked in c0) and the 15 moments, unrolled. */
+    double m[NMOM], ixm, iym;
+    prepare(dx, dy, n, mean_dx, mean_dy, c0, m, &ixm, &iym);
 
     /* Pass 2: quadratic, else linear, else Shepard (Eq. 27). */
-    if (n >= MLS_MIN_QUAD && fit(6, mom, dx, dy, n, xm, ym, c0, cx, cy, &info->rcond)) {
+    spd_small f;
+    double q0[SPD_MAX], qx[SPD_MAX], qy[SPD_MAX];
+    if (n >= MLS_MIN_QUAD && factor(6, m, &f, &info->rcond)) {
+        columns(&f, 6, ixm, iym, q0, qx, qy);
+        coeffs6(dx, dy, n, ixm, iym, q0, qx, qy, c0, cx, cy);
         info->basis = MLS_QUADRATIC;
         return MLS_QUADRATIC;
     }
-    if (n >= 3 && fit(3, mom, dx, dy, n, xm, ym, c0, cx, cy, &info->rcond)) {
+    if (n >= 3 && factor(3, m, &f, &info->rcond)) {
+        columns(&f, 3, ixm, iym, q0, qx, qy);
+        coeffs3(dx, dy, n, ixm, iym, q0, qx, qy, c0, cx, cy);
         info->basis = MLS_LINEAR;
         return MLS_LINEAR;
     }
     /* Weighted mean: no derivative information, so cx = cy = 0. */
+    double wsum = m[M1];
     for (int j = 0; j < n; j++) {
         c0[j] /= wsum;
         if (cx)
@@ -158,4 +227,57 @@ mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx,
     info->basis = MLS_SHEPARD;
     info->rcond = 1;
     return MLS_SHEPARD;
+}
+
+mls_basis mls_poly(const double *dx, const double *dy, int n, double mean_dx, double mean_dy,
+                   double *const c[6], mls_info *info)
+{
+    mls_info dummy;
+    if (!info)
+        info = &dummy;
+    info->basis = MLS_NONE;
+    info->rcond = 0;
+    if (n <= 0)
+        return MLS_NONE;
+    double m[NMOM], ixm, iym, *w = c[0];
+    prepare(dx, dy, n, mean_dx, mean_dy, w, m, &ixm, &iym);
+    spd_small f;
+    int nb = 0;
+    if (n >= MLS_MIN_QUAD && factor(6, m, &f, &info->rcond))
+        nb = 6;
+    else if (n >= 3 && factor(3, m, &f, &info->rcond))
+        nb = 3;
+    if (!nb) { /* Shepard: the mean, no derivatives */
+        for (int j = 0; j < n; j++) {
+            c[0][j] = w[j] / m[M1];
+            for (int q = 1; q < 6; q++)
+                c[q][j] = 0;
+        }
+        info->basis = MLS_SHEPARD;
+        info->rcond = 1;
+        return MLS_SHEPARD;
+    }
+    /* columns of A^{-1} for the polynomial coefficients m1..m6 (Eqs. 32-34
+     * for the first three), scaled to physical derivatives at the target:
+     * value m1, d/dx m2/x_m, d/dy m3/y_m, d2/dxdy m4/(x_m y_m),
+     * d2/dx2 2 m5/x_m^2, d2/dy2 2 m6/y_m^2 */
+    double q[6][SPD_MAX] = {{0}};
+    const double scale[6] = {1, ixm, iym, ixm * iym, 2 * ixm * ixm, 2 * iym * iym};
+    for (int k = 0; k < nb; k++) {
+        spd_inv_column(&f, k, q[k]);
+        for (int i = 0; i < nb; i++)
+            q[k][i] *= scale[k];
+    }
+    for (int j = 0; j < n; j++) {
+        double X = dx[j] * ixm, Y = dy[j] * iym, wj = w[j];
+        double R[6] = {1, X, Y, X * Y, X * X, Y * Y};
+        for (int k = 0; k < 6; k++) {
+            double sum = 0;
+            for (int i = 0; i < nb; i++)
+                sum += R[i] * q[k][i];
+            c[k][j] = wj * sum;
+        }
+    }
+    info->basis = nb == 6 ? MLS_QUADRATIC : MLS_LINEAR;
+    return info->basis;
 }

@@ -236,3 +236,44 @@ void part_boundary_free(part_boundary *b)
     free(b->idx);
     memset(b, 0, sizeof *b);
 }
+
+/* Gather every array of the set through perm (new i <- old perm[i]), with
+ * tmp of n * 8 bytes as the staging buffer. */
+#define PERMUTE(arr, type)                                  \
+    do {                                                    \
+        type *t_ = (type *)tmp;                             \
+        for (size_t i = 0; i < n; i++)                      \
+            t_[i] = (arr)[perm[i]];                         \
+        memcpy((arr), t_, n * sizeof(type));                \
+    } while (0)
+
+ump_status part_sort_by_cell(part_set *s, part_bins *b, const mesh2d *m, ump_err *err)
+{
+    UMP_CALL(part_bins_build(b, m, s, err));
+    size_t n = (size_t)b->off[m->ncells]; /* binned particles: all with cell >= 0 */
+    UMP_CHECK(n == s->n, err, UMP_ERR_INPUT, "particles: %zu of %zu particles have no cell", s->n - n, s->n);
+    int sorted = 1;
+    for (size_t i = 0; i < n && sorted; i++)
+        sorted = b->idx[i] == i;
+    if (sorted)
+        return UMP_OK;
+    size_t need = n * 8;
+    if (!b->work || b->work_bytes < need) {
+        void *w = ump_realloc_array(b->work, need, 1);
+        UMP_CHECK(w, err, UMP_ERR_NOMEM, "particles: out of memory sorting %zu particles", n);
+        b->work = w;
+        b->work_bytes = need;
+    }
+    void *tmp = b->work;
+    const size_t *perm = b->idx;
+    PERMUTE(s->x, double);
+    PERMUTE(s->y, double);
+    PERMUTE(s->u, double);
+    PERMUTE(s->v, double);
+    PERMUTE(s->T, double);
+    PERMUTE(s->id, int64_t);
+    PERMUTE(s->cell, ump_idx);
+    for (size_t i = 0; i < n; i++)
+        b->idx[i] = i; /* the bins of the sorted set: same offsets, identity order */
+    return UMP_OK;
+}

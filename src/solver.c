@@ -1,15 +1,40 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
- * solver.c -- one UMPPM time step (Steps 5-12, Section 3.3 of seed 000).
+ * solver.c -- one UMPPM time step (Steps 6-11, Section 3.3 of Ng, Sheu &
+ * Hwang 2016; Step 5, the time step, is runtime.c's, Step 12, the output,
+ * app.c's). docs/METHOD.md section 5 maps each step to its equations.
  *
  * Data flow of a step (particles P, mesh M):
- *   P: u^n, r^n --(Eq. 14 implicit predictor, CPM Laplacian)--> u*
- *   P: r* = r^n + dt u*                                  (Eq. 9)
- *   M: u*_f, u*_P by MLS from P at r*                    (Eqs. 28-35, 32)
- *   M: PPE sum_f grad p_f . A_f = (1/dt) sum_f u*_f . A_f (Eqs. 20, 25)
- *   P: u^{n+1} = u* - dt grad p (MLS over centroid p)    (Eqs. 10, 33-34)
+ *   P: u^n, r^n --(Eq. 14 implicit predictor, CPM Laplacian)--> u*   step6
+ *   P: r* = r^n + dt u*                                  (Eq. 9)    step7
+ *   M: u*_f, u*_P by MLS from P at r*                    (Eqs. 28-35, 32) step8
+ *   M: PPE sum_f grad p_f . A_f = (1/dt) sum_f u*_f . A_f (Eqs. 20, 25) step9
+ *   P: u^{n+1} = u* - dt grad p (MLS over centroid p)    (Eqs. 10, 33-34) step10
  *   P: r^{n+1} = r^n + dt u^{n+1}                        (Eq. 7)
  *   M: u_P = u*_P - dt grad p_P (LS gradient)            (Eqs. 36, 26)
- *   P: delete/add particles (UMPPM or UMPPM*)            (Section 3.2.2.2)
+ *   P: delete/add particles (UMPPM or UMPPM*)            (Section 3.2.2.2) step11
+ *
+ * Data. Three kinds, kept apart:
+ *   sol_setup  what never changes after sol_create: the mesh operators (LS
+ *              gradient, the factorized PPE, the sorted particle stencils,
+ *              the pressure-gradient operator), the boundary-condition
+ *              tables, gh;
+ *   sol_state  the state of the run: particles and their bins, boundary
+ *              particle values, mesh fields, the predictor system;
+ *   sol_work   one per thread: gathered neighbours, offsets, fit
+ *              coefficients and that thread's fall-back counters. Every
+ *              stage gets its work buffer as an argument; counters are
+ *              summed over threads into sol_stats.
+ * Sparse assembly (the predictor rows) is count -> prefix sum -> fill, each
+ * row written by one thread, so no assembly reallocates inside a loop and
+ * the matrix is the same for any thread count.
+ *
+ * Threads (OpenMP): every particle, face and cell loop of a step is split
+ * over threads; each iteration writes only its own outputs, and every
+ * floating-point reduction is either order-free (max) or done in a fixed
+ * order (lsolve_rows.c's blocked dot products; the continuity sums run
+ * serially over per-cell values), so 1 and N threads give bit-identical
+ * results. Serial: the PPE's triangular solves (SuiteSparse), binning,
+ * removal and refill, and the UMPPM deletion pass.
  *
  * Choices where the paper is silent (also in the README):
  *   - Boundary particles carry the prescribed velocity on fixedValue/noSlip/
@@ -19,14 +44,23 @@
  *     on symmetry planes the owner cell velocity without its normal part.
  *   - MLS at a face whose velocity is not prescribed leaves out that face's
  *     own boundary particle (its value is derived from the interior).
- *   - The pressure gradient at a particle (Eq. 10) is the MLS derivative of
- *     the centroid pressures of the particle's cell and its N2 stencil,
- *     evaluated at the intermediate position r* where the particle was
- *     binned for Step 8.
+ *   - The pressure gradient at a particle (Eq. 10) is the derivative, at
+ *     the particle's intermediate position r*, of the quadratic MLS fit
+ *     (Eqs. 28-35) of the centroid pressures of its cell and the cell's N2
+ *     stencil, the fit being centred at the cell centroid: the centroids
+ *     never move, so that fit is a mesh-only operator built once
+ *     (pgrad_build), and each step costs five dot products per cell and
+ *     two multiply-adds per particle (it was one MLS fit per particle per
+ *     step, centred at the particle). Both are exact for quadratic
+ *     pressures; see docs/METHOD.md for the comparison.
  *   - A particle whose CPM moment matrix is singular (too few independent
  *     neighbours) gets the MPS Laplacian for that step (counted in stats).
  *   - Particles that cross a boundary face at r* or r^{n+1} are removed at
  *     the end of the step; the empty-cell refill then repopulates.
+ *   - Particles are re-sorted by cell after the management of every step
+ *     (sortInterval), an O(N) gather from the bins: the particles of a cell
+ *     are consecutive, stencil neighbours are near in memory, and the
+ *     predictor rows come out with increasing columns.
  *   - Buoyant: the energy equation (Eq. 37) uses the predictor's Laplacian
  *     rows (same particles at r^n, same coefficients a_j) scaled by
  *     dt kappa instead of dt nu. Temperature boundary particles carry the
@@ -47,49 +81,88 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 enum { BU_FIXED = 0, BU_OUTLET, BU_INLETOUTLET, BU_SYMMETRY };
 enum { BT_FIXED = 0, BT_ZEROGRADIENT, BT_INLETOUTLET };
 
-struct sol {
+/* Pressure-gradient operator rows per stencil entry: d/dx, d/dy,
+ * d2/dxdy, d2/dx2, d2/dy2 at the centroid. */
+enum { PG_X, PG_Y, PG_XY, PG_XX, PG_YY, PG_N };
+
+typedef struct sol_setup {
     const mesh2d *m;
     sol_settings set;
-    part_set *P;
-    part_bins bins;
-    part_boundary bp;
     lsq_grad *g;
     ppe *pe;
-    lsolve_krylov *kry;
-    ump_idx kry_n;
     /* boundary conditions per boundary face b = f - ninternal */
     unsigned char *u_kind;
     double *ub, *vb;           /* prescribed velocity or inletValue */
-    unsigned char *p_dir;      /* [nfaces] */
-    double *pf;                /* [nfaces] prescribed face pressure (pi) */
+    unsigned char *p_dir;      /* [nfaces] fixed pressure */
+    double *prgh_f;            /* [nfaces] buoyant: prescribed p_rgh */
     int need_ref;              /* no fixed-pressure face: pRefCell fixes the level */
-    /* buoyant: temperature boundary conditions per boundary face, the
-     * prescribed p_rgh of fixed-pressure faces, gh at cells and faces */
-    unsigned char *t_kind;
-    double *tb, *prgh_f, *ghc, *ghf;
-    double *Tc, *gtx, *gty;    /* mesh temperature T_P and its LS gradient */
+    unsigned char *t_kind;     /* buoyant: temperature condition per boundary face */
+    double *tb;
+    double *ghc, *ghf;         /* buoyant: gh at cells and faces */
+    /* particle stencil of each cell: {c} u N2(c) in increasing cell order,
+     * with the cyclic shift of each entry */
+    ump_idx *st_off, *st_cell;
+    double *st_sx, *st_sy;
+    ump_idx st_max;            /* largest stencil (cells) */
+    /* faces whose u* is interpolated (not fixed, not symmetry), by owner */
+    ump_idx *of_off, *of_face;
+    /* pressure-gradient operator: PG_N rows per stencil entry, and whether
+     * the cell's fit fell back to a smaller basis */
+    double *pg;
+    unsigned char *pg_fallback;
+    ump_idx pg_nfallback;
+} sol_setup;
+
+/* A gathered neighbour: fluid particle ref >= 0, boundary particle
+ * ref = -1 - b. */
+typedef struct sol_work {
+    size_t cap;
+    double *px, *py;           /* gathered positions (stencil shift applied) */
+    ump_idx *ref;
+    double *h, *k;             /* offsets from the target */
+    ump_idx *sref;             /* refs of the samples in h, k order */
+    double *c0, *cx, *cy;      /* MLS / Laplacian coefficients */
+    double *pv;                /* stencil values (pressure operator) */
+    long lap_fallbacks, mls_fallbacks;
+    ump_err err;               /* first error of this thread in a stage */
+    ump_status rc;
+} sol_work;
+
+typedef struct sol_state {
+    part_set *P;
+    part_bins bins;
+    part_boundary bp;
     /* mesh fields */
-    double *p, *uc, *vc, *usc, *vsc, *flux, *gflux, *gx, *gy, *div;
-    /* per particle workspace */
+    double *p, *uc, *vc, *usc, *vsc, *flux, *gflux, *gx, *gy, *div, *pgc;
+    double *pf;                /* [nfaces] face pressure of fixed faces (pi) */
+    double *Tc, *gtx, *gty;    /* buoyant: mesh temperature T_P, its LS gradient */
+    /* per particle */
     size_t wcap;
     double *x0, *y0, *us, *vs, *rhs_u, *rhs_v, *Ts, *rhs_T;
     ump_idx *cell0;
     unsigned char *keep;
-    /* predictor matrix rows */
+    /* predictor system I + dt nu L in rows */
     ump_idx *rp, *ci;
-    double *lv, *cv;           /* Laplacian rows (sum a_j on the diagonal, -a_j
-                                  off it) and the scaled system I + dt nu L */
+    double *av;
     size_t rowcap;
-    lsolve_mat *A;
-    size_t Acap;
-    /* neighbour scratch */
-    part_nbr *nb;
-    size_t nbcap;
-    double *h, *k, *a, *c0, *cx, *cy, *vals;
+    ump_idx *cnt_cell;         /* [ncells] fluid particles in each cell's stencil */
+    lsolve_rows *kry;
+    long steps;
+} sol_state;
+
+struct sol {
+    sol_setup su;
+    sol_state st;
+    int nthreads;
+    sol_work *work;            /* [nthreads] */
 };
 
 void sol_default_settings(sol_settings *s)
@@ -101,140 +174,278 @@ void sol_default_settings(sol_settings *s)
     s->lap.model = LAP_CPM;
     s->lap.re_factor = 0; /* the model's default */
     s->ppe_solver = LSOLVE_AUTO;
-    s->pred_pc = LSOLVE_PC_ILU0;
+    s->pred_pc = LSOLVE_PC_JACOBI;
     s->pred_tol = 1e-12;
     s->pred_maxit = 500;
     s->p_ref_cell = 0;
     s->p_ref_value = 0;
+    s->sort_interval = 1;
+}
+
+static int thread_id(void)
+{
+#ifdef _OPENMP
+    return omp_get_thread_num();
+#else
+    return 0;
+#endif
+}
+
+int sol_threads(void)
+{
+#ifdef _OPENMP
+    return omp_get_max_threads();
+#else
+    return 1;
+#endif
+}
+
+static double cpu_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static double wall_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Stage timer: CPU (all threads) and wall seconds since the last mark. */
+typedef struct stage_clock {
+    double cpu, wall;
+} stage_clock;
+
+static void stage_mark(stage_clock *c, sol_stats *st, int stage)
+{
+    double cpu = cpu_seconds(), wall = wall_seconds();
+    if (st && stage >= 0) {
+        st->stage_cpu[stage] += cpu - c->cpu;
+        st->stage_wall[stage] += wall - c->wall;
+    }
+    c->cpu = cpu;
+    c->wall = wall;
+}
+
+static const char *const STAGE_NAMES[SOL_NSTAGES] = {
+    "boundary particles", "predictor rows (Step 6)", "predictor solve (Step 6)",
+    "move r* (Step 7)", "MLS u* faces/centroids (Step 8)", "PPE (Step 9)",
+    "correct and move (Step 10)", "management (Step 11)", "continuity, Courant"};
+
+const char *sol_stage_name(int stage)
+{
+    return stage >= 0 && stage < SOL_NSTAGES ? STAGE_NAMES[stage] : "?";
 }
 
 #define FREE(p) do { free(p); (p) = NULL; } while (0)
+
+static void work_free(sol_work *w)
+{
+    void *arr[] = {w->px, w->py, w->ref, w->h, w->k, w->sref, w->c0, w->cx, w->cy, w->pv};
+    for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
+        free(arr[i]);
+    memset(w, 0, sizeof *w);
+}
 
 void sol_free(sol **pS)
 {
     if (!pS || !*pS)
         return;
     sol *S = *pS;
-    part_free(&S->P);
-    part_bins_free(&S->bins);
-    part_boundary_free(&S->bp);
-    lsq_free(&S->g);
-    ppe_free(&S->pe);
-    lsolve_krylov_free(&S->kry);
-    lsolve_mat_free(&S->A);
-    void *arr[] = {S->u_kind, S->ub, S->vb, S->p_dir, S->pf, S->p, S->uc, S->vc, S->usc, S->vsc,
-                   S->flux, S->gflux, S->gx, S->gy, S->div, S->x0, S->y0, S->us, S->vs, S->rhs_u,
-                   S->rhs_v, S->Ts, S->rhs_T, S->cell0, S->keep, S->rp, S->ci, S->lv, S->cv, S->nb,
-                   S->h, S->k, S->a, S->c0, S->cx, S->cy, S->vals, S->t_kind, S->tb, S->prgh_f,
-                   S->ghc, S->ghf, S->Tc, S->gtx, S->gty};
+    sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    part_free(&st->P);
+    part_bins_free(&st->bins);
+    part_boundary_free(&st->bp);
+    lsq_free(&su->g);
+    ppe_free(&su->pe);
+    lsolve_rows_free(&st->kry);
+    void *arr[] = {su->u_kind, su->ub, su->vb, su->p_dir, su->prgh_f, su->t_kind, su->tb, su->ghc, su->ghf,
+                   su->st_off, su->st_cell, su->st_sx, su->st_sy, su->of_off, su->of_face, su->pg,
+                   su->pg_fallback, st->p, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
+                   st->gy, st->div, st->pgc, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
+                   st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
+                   st->av, st->cnt_cell};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
+    if (S->work)
+        for (int t = 0; t < S->nthreads; t++)
+            work_free(&S->work[t]);
+    free(S->work);
     free(S);
     *pS = NULL;
 }
 
-/* Grow the per-particle workspace to at least n particles. */
-static ump_status grow_particle_work(sol *S, size_t n, ump_err *err)
+/* ---- per-thread work ----------------------------------------------------- */
+
+/* Room for n gathered neighbours (amortised growth: a stencil grows only
+ * when particles crowd into it, never per particle). */
+static ump_status work_reserve(sol_work *w, size_t n, ump_err *err)
 {
-    if (n <= S->wcap)
+    if (n <= w->cap)
         return UMP_OK;
-    size_t c = n > 2 * S->wcap ? n : 2 * S->wcap;
-    void **arr[] = {(void **)&S->x0,    (void **)&S->y0,    (void **)&S->us, (void **)&S->vs,
-                    (void **)&S->rhs_u, (void **)&S->rhs_v, (void **)&S->Ts, (void **)&S->rhs_T};
-    for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
-        void *q = ump_realloc_array(*arr[i], c, sizeof(double));
+    size_t c = n + n / 2 + 64;
+    double **d[] = {&w->px, &w->py, &w->h, &w->k, &w->c0, &w->cx, &w->cy, &w->pv};
+    for (size_t i = 0; i < sizeof d / sizeof d[0]; i++) {
+        double *q = ump_realloc_array(*d[i], c, sizeof(double));
         if (!q)
-            return UMP_FAIL(err, UMP_ERR_NOMEM, "particles: out of memory (%zu)", c);
-        *arr[i] = q;
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "neighbour list: out of memory (%zu)", c);
+        *d[i] = q;
     }
-    ump_idx *cl = ump_realloc_array(S->cell0, c, sizeof *cl);
-    unsigned char *kp = ump_realloc_array(S->keep, c, 1);
-    ump_idx *rp = ump_realloc_array(S->rp, c + 1, sizeof *rp);
-    if (!cl) return UMP_FAIL(err, UMP_ERR_NOMEM, "particles: out of memory (%zu)", c);
-    S->cell0 = cl;
-    if (!kp) return UMP_FAIL(err, UMP_ERR_NOMEM, "particles: out of memory (%zu)", c);
-    S->keep = kp;
-    if (!rp) return UMP_FAIL(err, UMP_ERR_NOMEM, "particles: out of memory (%zu)", c);
-    S->rp = rp;
-    S->wcap = c;
+    ump_idx **ix[] = {&w->ref, &w->sref};
+    for (size_t i = 0; i < sizeof ix / sizeof ix[0]; i++) {
+        ump_idx *q = ump_realloc_array(*ix[i], c, sizeof(ump_idx));
+        if (!q)
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "neighbour list: out of memory (%zu)", c);
+        *ix[i] = q;
+    }
+    w->cap = c;
     return UMP_OK;
 }
 
-/* Scratch arrays for neighbour lists and MLS/Laplacian coefficients. */
-static ump_status ensure_scratch(sol *S, size_t nc, ump_err *err)
+/* Record the first error of a thread inside a parallel stage. */
+static void work_fail(sol_work *w, ump_status rc, const ump_err *e)
 {
-    if (nc <= S->nbcap)
-        return UMP_OK;
-    part_nbr *nb = ump_realloc_array(S->nb, nc, sizeof *nb);
-    if (!nb)
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "neighbour list: out of memory (%zu)", nc);
-    S->nb = nb;
-    double **arr[] = {&S->h, &S->k, &S->a, &S->c0, &S->cx, &S->cy, &S->vals};
-    for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
-        double *q = ump_realloc_array(*arr[i], nc, sizeof(double));
-        if (!q)
-            return UMP_FAIL(err, UMP_ERR_NOMEM, "neighbour list: out of memory (%zu)", nc);
-        *arr[i] = q;
+    if (w->rc == UMP_OK) {
+        w->rc = rc;
+        w->err = *e;
     }
-    S->nbcap = nc;
-    return UMP_OK;
 }
 
-/* Neighbour list of a point into S->nb (grown as needed). */
-static ump_status gather(sol *S, ump_idx c, double x, double y, size_t exclude, size_t *n, ump_err *err)
+/* After a parallel stage: the error of the lowest-numbered thread that
+ * failed (deterministic message for a given thread count), counters
+ * summed into st. */
+static ump_status work_collect(sol *S, sol_stats *st, ump_err *err)
 {
-    for (;;) {
-        size_t cnt = part_neighbours(S->m, S->P, &S->bins, &S->bp, c, x, y, exclude, S->nb, S->nbcap);
-        if (cnt <= S->nbcap) {
-            *n = cnt;
-            return UMP_OK;
+    ump_status rc = UMP_OK;
+    for (int t = 0; t < S->nthreads; t++) {
+        sol_work *w = &S->work[t];
+        if (st) {
+            st->lap_fallbacks += (int)w->lap_fallbacks;
+            st->mls_fallbacks += (int)w->mls_fallbacks;
         }
-        UMP_CALL(ensure_scratch(S, cnt + 64, err));
+        w->lap_fallbacks = w->mls_fallbacks = 0;
+        if (w->rc != UMP_OK && rc == UMP_OK) {
+            rc = w->rc;
+            if (err)
+                *err = w->err;
+        }
+        w->rc = UMP_OK;
     }
+    return rc;
 }
 
-/* The neighbours of fluid particle i (all but itself) and their offsets
- * into S->h, S->k: the set every particle Laplacian sees. */
-static ump_status gather_offsets(sol *S, size_t i, size_t *n, ump_err *err)
+/* Gather the fluid and boundary particles of cell c's stencil (bins must be
+ * current) into w->px, w->py, w->ref, in stencil order; returns the count. */
+static ump_status gather_cell(const sol_setup *su, const sol_state *st, sol_work *w, ump_idx c, size_t *n,
+                              ump_err *err)
 {
-    const part_set *P = S->P;
-    UMP_CALL(gather(S, P->cell[i], P->x[i], P->y[i], i, n, err));
-    for (size_t j = 0; j < *n; j++) {
-        S->h[j] = S->nb[j].dx;
-        S->k[j] = S->nb[j].dy;
+    const double *restrict X = st->P->x, *restrict Y = st->P->y, *restrict BX = st->bp.x,
+                           *restrict BY = st->bp.y;
+    const ump_idx *boff = st->bins.off, *bpoff = st->bp.off, *bpidx = st->bp.idx;
+    const size_t *bidx = st->bins.idx;
+    size_t cnt = 0;
+    ump_idx a0 = su->st_off[c], a1 = su->st_off[c + 1];
+    size_t need = 0;
+    for (ump_idx a = a0; a < a1; a++) {
+        ump_idx q = su->st_cell[a];
+        need += (size_t)(boff[q + 1] - boff[q]) + (size_t)(bpoff[q + 1] - bpoff[q]);
     }
+    if (need > w->cap)
+        UMP_CALL(work_reserve(w, need, err));
+    double *restrict px = w->px, *restrict py = w->py;
+    ump_idx *restrict ref = w->ref;
+    for (ump_idx a = a0; a < a1; a++) {
+        ump_idx q = su->st_cell[a];
+        double sx = su->st_sx ? su->st_sx[a] : 0, sy = su->st_sy ? su->st_sy[a] : 0;
+        for (ump_idx k = boff[q]; k < boff[q + 1]; k++) {
+            size_t j = bidx[k];
+            px[cnt] = X[j] + sx;
+            py[cnt] = Y[j] + sy;
+            ref[cnt++] = (ump_idx)j;
+        }
+        for (ump_idx k = bpoff[q]; k < bpoff[q + 1]; k++) {
+            ump_idx j = bpidx[k];
+            px[cnt] = BX[j] + sx;
+            py[cnt] = BY[j] + sy;
+            ref[cnt++] = -1 - j;
+        }
+    }
+    *n = cnt;
     return UMP_OK;
 }
+
+/* Offsets of the gathered samples from (x, y) into w->h, w->k, w->sref,
+ * leaving out the fluid particle `self` (-1: none) and the boundary
+ * particle of face `skip_bface` (boundary index, -1: none); returns the
+ * count. */
+static int offsets(sol_work *w, size_t n, double x, double y, ump_idx self, ump_idx skip_bface)
+{
+    ump_idx skip = skip_bface >= 0 ? -1 - skip_bface : INT32_MIN;
+    const double *restrict px = w->px, *restrict py = w->py;
+    const ump_idx *restrict ref = w->ref;
+    double *restrict h = w->h, *restrict k = w->k;
+    ump_idx *restrict sref = w->sref;
+    if (n > MLS_MAX_SAMPLES)
+        n = MLS_MAX_SAMPLES;
+    int m = 0;
+    for (size_t j = 0; j < n; j++) {
+        ump_idx r = ref[j];
+        h[m] = px[j] - x;
+        k[m] = py[j] - y;
+        sref[m] = r;
+        m += r != self && r != skip; /* branch-free: a skipped sample is overwritten */
+    }
+    return m;
+}
+
+/* sum_j c_j value_j of a fluid quantity f and a boundary quantity g. */
+static inline double apply(const double *restrict c, const ump_idx *restrict ref, int n,
+                           const double *restrict f, const double *restrict g)
+{
+    double s = 0;
+    for (int j = 0; j < n; j++) {
+        ump_idx r = ref[j];
+        s += c[j] * (r >= 0 ? f[r] : g[-1 - r]);
+    }
+    return s;
+}
+
+/* ---- boundary conditions -------------------------------------------------- */
 
 /* The temperature a zero normal gradient gives on boundary face f:
  * T_P + grad T_P . d_t, d_t = (x_f - x_P) minus its normal part. */
-static double zero_gradient_T(const sol *S, ump_idx f)
+static double zero_gradient_T(const sol_setup *su, const sol_state *st, ump_idx f)
 {
-    const mesh2d *m = S->m;
+    const mesh2d *m = su->m;
     ump_idx o = m->owner[f];
     double dx = m->fx[f] - m->cx[o], dy = m->fy[f] - m->cy[o];
     double dn = dx * m->nx[f] + dy * m->ny[f];
     dx -= dn * m->nx[f];
     dy -= dn * m->ny[f];
-    return S->Tc[o] + S->gtx[o] * dx + S->gty[o] * dy;
+    return st->Tc[o] + st->gtx[o] * dx + st->gty[o] * dy;
 }
 
 /* Boundary particle values for this step (see the choices at the top). */
-static void set_boundary_particles(sol *S)
+static void set_boundary_particles(const sol_setup *su, sol_state *st)
 {
-    const mesh2d *m = S->m;
-    for (ump_idx b = 0; b < S->bp.n; b++) {
-        ump_idx f = S->bp.face[b], o = m->owner[f];
-        double u = S->uc[o], v = S->vc[o];
-        switch (S->u_kind[b]) {
+    const mesh2d *m = su->m;
+    part_boundary *bp = &st->bp;
+    for (ump_idx b = 0; b < bp->n; b++) {
+        ump_idx f = bp->face[b], o = m->owner[f];
+        double u = st->uc[o], v = st->vc[o];
+        switch (su->u_kind[b]) {
         case BU_FIXED:
-            u = S->ub[b];
-            v = S->vb[b];
+            u = su->ub[b];
+            v = su->vb[b];
             break;
         case BU_INLETOUTLET:
-            if (S->flux[f] < 0) {
-                u = S->ub[b];
-                v = S->vb[b];
+            if (st->flux[f] < 0) {
+                u = su->ub[b];
+                v = su->vb[b];
             }
             break;
         case BU_SYMMETRY: {
@@ -246,28 +457,28 @@ static void set_boundary_particles(sol *S)
         default:
             break;
         }
-        S->bp.u[b] = u;
-        S->bp.v[b] = v;
+        bp->u[b] = u;
+        bp->v[b] = v;
     }
-    if (!S->set.buoyant)
+    if (!su->set.buoyant)
         return;
-    lsq_gradient(S->g, S->Tc, S->gtx, S->gty);
-    for (ump_idx b = 0; b < S->bp.n; b++) {
-        ump_idx f = S->bp.face[b];
-        double T = S->tb[b];
-        if (S->t_kind[b] == BT_ZEROGRADIENT || (S->t_kind[b] == BT_INLETOUTLET && S->flux[f] >= 0))
-            T = zero_gradient_T(S, f);
-        S->bp.T[b] = T;
+    lsq_gradient(su->g, st->Tc, st->gtx, st->gty);
+    for (ump_idx b = 0; b < bp->n; b++) {
+        ump_idx f = bp->face[b];
+        double T = su->tb[b];
+        if (su->t_kind[b] == BT_ZEROGRADIENT || (su->t_kind[b] == BT_INLETOUTLET && st->flux[f] >= 0))
+            T = zero_gradient_T(su, st, f);
+        bp->T[b] = T;
         /* fixed p_rgh: pi = p_rgh - beta (T_f - TRef) gh_f (the buoyant p_rgh
          * relation of solver.h) */
-        if (S->p_dir[f])
-            S->pf[f] = S->prgh_f[f] - S->set.beta * (T - S->set.t_ref) * S->ghf[f];
+        if (su->p_dir[f])
+            st->pf[f] = su->prgh_f[f] - su->set.beta * (T - su->set.t_ref) * su->ghf[f];
     }
 }
 
-static ump_status read_bcs(sol *S, const fld_field *U, const fld_field *pf, ump_err *err)
+static ump_status read_bcs(sol_setup *su, sol_state *st, const fld_field *U, const fld_field *pf, ump_err *err)
 {
-    const mesh2d *m = S->m;
+    const mesh2d *m = su->m;
     const pmesh *pm = m->pm;
     for (int p = 0; p < pm->npatches; p++) {
         const pmesh_patch *pp = &pm->patch[p];
@@ -282,22 +493,22 @@ static ump_status read_bcs(sol *S, const fld_field *U, const fld_field *pf, ump_
             case FLD_BC_FIXEDVALUE:
             case FLD_BC_NOSLIP:
             case FLD_BC_MOVINGWALLVELOCITY:
-                S->u_kind[b] = BU_FIXED;
-                S->ub[b] = val[m->ax[0]];
-                S->vb[b] = val[m->ax[1]];
+                su->u_kind[b] = BU_FIXED;
+                su->ub[b] = val[m->ax[0]];
+                su->vb[b] = val[m->ax[1]];
                 break;
             case FLD_BC_ZEROGRADIENT:
             case FLD_BC_CALCULATED:
-                S->u_kind[b] = BU_OUTLET;
+                su->u_kind[b] = BU_OUTLET;
                 break;
             case FLD_BC_INLETOUTLET:
-                S->u_kind[b] = BU_INLETOUTLET;
-                S->ub[b] = bu->aux[3 * (size_t)i + (size_t)m->ax[0]];
-                S->vb[b] = bu->aux[3 * (size_t)i + (size_t)m->ax[1]];
+                su->u_kind[b] = BU_INLETOUTLET;
+                su->ub[b] = bu->aux[3 * (size_t)i + (size_t)m->ax[0]];
+                su->vb[b] = bu->aux[3 * (size_t)i + (size_t)m->ax[1]];
                 break;
             case FLD_BC_SYMMETRYPLANE:
             case FLD_BC_SYMMETRY:
-                S->u_kind[b] = BU_SYMMETRY;
+                su->u_kind[b] = BU_SYMMETRY;
                 break;
             default:
                 return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
@@ -306,10 +517,10 @@ static ump_status read_bcs(sol *S, const fld_field *U, const fld_field *pf, ump_
             }
             switch (bpp->type) {
             case FLD_BC_FIXEDVALUE:
-                S->p_dir[f] = 1;
-                S->pf[f] = bpp->value[i];
-                if (S->prgh_f)
-                    S->prgh_f[f] = bpp->value[i];
+                su->p_dir[f] = 1;
+                st->pf[f] = bpp->value[i];
+                if (su->prgh_f)
+                    su->prgh_f[f] = bpp->value[i];
                 break;
             case FLD_BC_ZEROGRADIENT:
             case FLD_BC_FIXEDFLUXPRESSURE:
@@ -322,7 +533,7 @@ static ump_status read_bcs(sol *S, const fld_field *U, const fld_field *pf, ump_
                                 "p: boundary condition '%s' on patch '%s' is not supported for pressure",
                                 fld_bc_name(bpp->type), pp->name);
             }
-            if (S->p_dir[f] && S->u_kind[b] == BU_FIXED)
+            if (su->p_dir[f] && su->u_kind[b] == BU_FIXED)
                 return UMP_FAIL(err, UMP_ERR_INPUT,
                                 "patch '%s': both U and p are fixed; fix one of them (inlet: fixedValue U "
                                 "with zeroGradient p; outlet: zeroGradient/inletOutlet U with fixedValue p)",
@@ -333,9 +544,9 @@ static ump_status read_bcs(sol *S, const fld_field *U, const fld_field *pf, ump_
 }
 
 /* Temperature boundary conditions (see the choices at the top). */
-static ump_status read_t_bcs(sol *S, const fld_field *T, ump_err *err)
+static ump_status read_t_bcs(sol_setup *su, const fld_field *T, ump_err *err)
 {
-    const mesh2d *m = S->m;
+    const mesh2d *m = su->m;
     const pmesh *pm = m->pm;
     for (int p = 0; p < pm->npatches; p++) {
         const pmesh_patch *pp = &pm->patch[p];
@@ -347,17 +558,17 @@ static ump_status read_t_bcs(sol *S, const fld_field *T, ump_err *err)
             ump_idx b = f - m->ninternal;
             switch (bt->type) {
             case FLD_BC_FIXEDVALUE:
-                S->t_kind[b] = BT_FIXED;
-                S->tb[b] = bt->value[i];
+                su->t_kind[b] = BT_FIXED;
+                su->tb[b] = bt->value[i];
                 break;
             case FLD_BC_ZEROGRADIENT:
             case FLD_BC_SYMMETRYPLANE:
             case FLD_BC_SYMMETRY:
-                S->t_kind[b] = BT_ZEROGRADIENT;
+                su->t_kind[b] = BT_ZEROGRADIENT;
                 break;
             case FLD_BC_INLETOUTLET:
-                S->t_kind[b] = BT_INLETOUTLET;
-                S->tb[b] = bt->aux[i];
+                su->t_kind[b] = BT_INLETOUTLET;
+                su->tb[b] = bt->aux[i];
                 break;
             default:
                 return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
@@ -370,6 +581,159 @@ static ump_status read_t_bcs(sol *S, const fld_field *T, ump_err *err)
     return UMP_OK;
 }
 
+/* ---- mesh-only operators (Steps 1-4, once) -------------------------------- */
+
+/* The particle stencil {c} u N2(c) of each cell, in increasing cell order
+ * (N2 is sorted; c is inserted), with shifts. */
+static ump_status stencil_build(sol_setup *su, ump_err *err)
+{
+    const mesh2d *m = su->m;
+    ump_idx nc = m->ncells;
+    size_t tot = (size_t)m->n2_off[nc] + (size_t)nc;
+    if (!(su->st_off = ump_alloc_array((size_t)nc + 1, sizeof *su->st_off)) ||
+        !(su->st_cell = ump_alloc_array(tot, sizeof *su->st_cell)))
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the particle stencils");
+    if (m->n2_sx && (!(su->st_sx = ump_alloc_array(tot, sizeof *su->st_sx)) ||
+                     !(su->st_sy = ump_alloc_array(tot, sizeof *su->st_sy))))
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the particle stencils");
+    size_t k = 0;
+    su->st_max = 0;
+    for (ump_idx c = 0; c < nc; c++) {
+        su->st_off[c] = (ump_idx)k;
+        int placed = 0;
+        for (ump_idx a = m->n2_off[c]; a <= m->n2_off[c + 1]; a++) {
+            if (!placed && (a == m->n2_off[c + 1] || m->n2[a] > c)) {
+                su->st_cell[k] = c;
+                if (su->st_sx)
+                    su->st_sx[k] = su->st_sy[k] = 0;
+                k++;
+                placed = 1;
+            }
+            if (a == m->n2_off[c + 1])
+                break;
+            su->st_cell[k] = m->n2[a];
+            if (su->st_sx) {
+                su->st_sx[k] = m->n2_sx[a];
+                su->st_sy[k] = m->n2_sy[a];
+            }
+            k++;
+        }
+        su->st_max = UMP_MAX(su->st_max, (ump_idx)k - su->st_off[c]);
+    }
+    su->st_off[nc] = (ump_idx)k;
+    return UMP_OK;
+}
+
+/* Faces whose u* is an MLS fit, grouped by owner, so that one gather per
+ * cell serves its centroid and its faces. */
+static ump_status owned_faces_build(sol_setup *su, ump_err *err)
+{
+    const mesh2d *m = su->m;
+    ump_idx nc = m->ncells, nf = m->nfaces;
+    if (!(su->of_off = ump_alloc_array((size_t)nc + 1, sizeof *su->of_off)) ||
+        !(su->of_face = ump_alloc_array((size_t)nf + 1, sizeof *su->of_face)))
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the face lists");
+    /* count -> prefix sum -> fill */
+    for (ump_idx f = 0; f < nf; f++) {
+        int fitted = f < m->ninternal || (su->u_kind[f - m->ninternal] != BU_FIXED &&
+                                          su->u_kind[f - m->ninternal] != BU_SYMMETRY);
+        if (fitted)
+            su->of_off[m->owner[f] + 1]++;
+    }
+    for (ump_idx c = 0; c < nc; c++)
+        su->of_off[c + 1] += su->of_off[c];
+    ump_idx *fill = ump_alloc_array((size_t)nc, sizeof *fill);
+    if (!fill)
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the face lists");
+    for (ump_idx f = 0; f < nf; f++) {
+        int fitted = f < m->ninternal || (su->u_kind[f - m->ninternal] != BU_FIXED &&
+                                          su->u_kind[f - m->ninternal] != BU_SYMMETRY);
+        if (fitted) {
+            ump_idx o = m->owner[f];
+            su->of_face[su->of_off[o] + fill[o]++] = f;
+        }
+    }
+    free(fill);
+    return UMP_OK;
+}
+
+/* The pressure-gradient operator of Step 10 (Eq. 10 with Eqs. 33-34): per
+ * cell, the quadratic MLS fit (Eqs. 28-35) of the centroid pressures of its
+ * stencil, centred at its centroid (x_m, y_m from the cell's extents), as
+ * PG_N coefficient rows over the stencil: gradient and second derivatives
+ * at the centroid. */
+static ump_status pgrad_build(sol_setup *su, sol_work *w, ump_err *err)
+{
+    const mesh2d *m = su->m;
+    ump_idx nc = m->ncells;
+    size_t tot = (size_t)su->st_off[nc];
+    if (!(su->pg = ump_alloc_array(tot * PG_N, sizeof *su->pg)) ||
+        !(su->pg_fallback = ump_alloc_array((size_t)nc, 1)))
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the pressure-gradient operator");
+    UMP_CALL(work_reserve(w, (size_t)su->st_max, err));
+    double *c6 = ump_alloc_array(6 * (size_t)su->st_max + 6, sizeof *c6);
+    if (!c6)
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the pressure-gradient operator");
+    su->pg_nfallback = 0;
+    for (ump_idx c = 0; c < nc; c++) {
+        ump_idx a0 = su->st_off[c], n = su->st_off[c + 1] - a0;
+        for (ump_idx j = 0; j < n; j++) {
+            ump_idx q = su->st_cell[a0 + j];
+            w->h[j] = m->cx[q] + (su->st_sx ? su->st_sx[a0 + j] : 0) - m->cx[c];
+            w->k[j] = m->cy[q] + (su->st_sy ? su->st_sy[a0 + j] : 0) - m->cy[c];
+        }
+        double *col[6];
+        for (int q = 0; q < 6; q++)
+            col[q] = c6 + (size_t)q * (size_t)su->st_max;
+        mls_info info;
+        mls_basis b = mls_poly(w->h, w->k, (int)n, m->dx[c], m->dy[c], col, &info);
+        su->pg_fallback[c] = b != MLS_QUADRATIC;
+        su->pg_nfallback += b != MLS_QUADRATIC;
+        for (ump_idx j = 0; j < n; j++) {
+            double *r = su->pg + (size_t)(a0 + j) * PG_N;
+            r[PG_X] = col[1][j];
+            r[PG_Y] = col[2][j];
+            r[PG_XY] = col[3][j];
+            r[PG_XX] = col[4][j];
+            r[PG_YY] = col[5][j];
+        }
+    }
+    free(c6);
+    return UMP_OK;
+}
+
+/* ---- per-particle arrays ------------------------------------------------- */
+
+static ump_status grow_particle_work(sol_state *st, size_t n, ump_err *err)
+{
+    if (n <= st->wcap)
+        return UMP_OK;
+    size_t c = n > 2 * st->wcap ? n : 2 * st->wcap;
+    double **arr[] = {&st->x0, &st->y0, &st->us, &st->vs, &st->rhs_u, &st->rhs_v, &st->Ts, &st->rhs_T};
+    for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
+        double *q = ump_realloc_array(*arr[i], c, sizeof(double));
+        if (!q)
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "particles: out of memory (%zu)", c);
+        *arr[i] = q;
+    }
+    ump_idx *cl = ump_realloc_array(st->cell0, c, sizeof *cl);
+    if (!cl)
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "particles: out of memory (%zu)", c);
+    st->cell0 = cl;
+    unsigned char *kp = ump_realloc_array(st->keep, c, 1);
+    if (!kp)
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "particles: out of memory (%zu)", c);
+    st->keep = kp;
+    ump_idx *rp = ump_realloc_array(st->rp, c + 1, sizeof *rp);
+    if (!rp)
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "particles: out of memory (%zu)", c);
+    st->rp = rp;
+    st->wcap = c;
+    return UMP_OK;
+}
+
+/* ---- creation -------------------------------------------------------------- */
+
 ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U, const fld_field *pfld,
                       const fld_field *T, sol **out, ump_err *err)
 {
@@ -377,102 +741,107 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     sol *S = ump_alloc_array(1, sizeof *S);
     if (!S)
         return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory");
-    S->m = m;
-    S->set = *s;
+    sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    su->m = m;
+    su->set = *s;
+    S->nthreads = sol_threads();
     ump_idx nc = m->ncells, nf = m->nfaces, nb = nf - m->ninternal;
     ump_status rc;
-    double **cellarr[] = {&S->p, &S->uc, &S->vc, &S->usc, &S->vsc, &S->gx, &S->gy, &S->div};
+    if (!(S->work = ump_alloc_array((size_t)S->nthreads, sizeof *S->work)))
+        goto nomem;
+    double **cellarr[] = {&st->p, &st->uc, &st->vc, &st->usc, &st->vsc, &st->gx, &st->gy, &st->div};
     for (size_t i = 0; i < sizeof cellarr / sizeof cellarr[0]; i++)
         if (!(*cellarr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
             goto nomem;
-    if (!(S->flux = ump_alloc_array((size_t)nf, sizeof(double))) ||
-        !(S->gflux = ump_alloc_array((size_t)nf, sizeof(double))) ||
-        !(S->pf = ump_alloc_array((size_t)nf, sizeof(double))) ||
-        !(S->p_dir = ump_alloc_array((size_t)nf, 1)) ||
-        !(S->u_kind = ump_alloc_array((size_t)nb, 1)) ||
-        !(S->ub = ump_alloc_array((size_t)nb, sizeof(double))) ||
-        !(S->vb = ump_alloc_array((size_t)nb, sizeof(double))) ||
-        !(S->A = ump_alloc_array(1, sizeof *S->A)))
+    if (!(st->pgc = ump_alloc_array((size_t)nc * PG_N, sizeof(double))) ||
+        !(st->cnt_cell = ump_alloc_array((size_t)nc, sizeof(ump_idx))) ||
+        !(st->flux = ump_alloc_array((size_t)nf, sizeof(double))) ||
+        !(st->gflux = ump_alloc_array((size_t)nf, sizeof(double))) ||
+        !(st->pf = ump_alloc_array((size_t)nf, sizeof(double))) ||
+        !(su->p_dir = ump_alloc_array((size_t)nf, 1)) || !(su->u_kind = ump_alloc_array((size_t)nb, 1)) ||
+        !(su->ub = ump_alloc_array((size_t)nb, sizeof(double))) ||
+        !(su->vb = ump_alloc_array((size_t)nb, sizeof(double))))
         goto nomem;
     if (s->buoyant) {
         if (!T) {
             rc = UMP_FAIL(err, UMP_ERR_INPUT, "solver: a buoyant case needs the temperature field T");
             goto fail;
         }
-        double **carr[] = {&S->Tc, &S->gtx, &S->gty, &S->ghc};
+        double **carr[] = {&st->Tc, &st->gtx, &st->gty, &su->ghc};
         for (size_t i = 0; i < sizeof carr / sizeof carr[0]; i++)
             if (!(*carr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
                 goto nomem;
-        if (!(S->ghf = ump_alloc_array((size_t)nf, sizeof(double))) ||
-            !(S->prgh_f = ump_alloc_array((size_t)nf, sizeof(double))) ||
-            !(S->t_kind = ump_alloc_array((size_t)nb, 1)) ||
-            !(S->tb = ump_alloc_array((size_t)nb, sizeof(double))))
+        if (!(su->ghf = ump_alloc_array((size_t)nf, sizeof(double))) ||
+            !(su->prgh_f = ump_alloc_array((size_t)nf, sizeof(double))) ||
+            !(su->t_kind = ump_alloc_array((size_t)nb, 1)) ||
+            !(su->tb = ump_alloc_array((size_t)nb, sizeof(double))))
             goto nomem;
         /* gh = g . x - ghRef with the 3-D cell and face centres (gh.H) */
         double X[3];
         for (ump_idx c = 0; c < nc; c++) {
             mesh_to3d(m, m->cx[c], m->cy[c], X);
-            S->ghc[c] = s->g[0] * X[0] + s->g[1] * X[1] + s->g[2] * X[2] - s->gh_ref;
-            S->Tc[c] = T->internal[c];
+            su->ghc[c] = s->g[0] * X[0] + s->g[1] * X[1] + s->g[2] * X[2] - s->gh_ref;
+            st->Tc[c] = T->internal[c];
         }
         for (ump_idx f = 0; f < nf; f++) {
             mesh_to3d(m, m->fx[f], m->fy[f], X);
-            S->ghf[f] = s->g[0] * X[0] + s->g[1] * X[1] + s->g[2] * X[2] - s->gh_ref;
+            su->ghf[f] = s->g[0] * X[0] + s->g[1] * X[1] + s->g[2] * X[2] - s->gh_ref;
         }
-        if ((rc = read_t_bcs(S, T, err)) != UMP_OK)
+        if ((rc = read_t_bcs(su, T, err)) != UMP_OK)
             goto fail;
     }
     for (ump_idx c = 0; c < nc; c++) {
-        S->uc[c] = U->internal[3 * (size_t)c + (size_t)m->ax[0]];
-        S->vc[c] = U->internal[3 * (size_t)c + (size_t)m->ax[1]];
-        S->p[c] = pfld->internal[c];
+        st->uc[c] = U->internal[3 * (size_t)c + (size_t)m->ax[0]];
+        st->vc[c] = U->internal[3 * (size_t)c + (size_t)m->ax[1]];
+        st->p[c] = pfld->internal[c];
     }
-    if ((rc = read_bcs(S, U, pfld, err)) != UMP_OK)
+    if ((rc = read_bcs(su, st, U, pfld, err)) != UMP_OK)
         goto fail;
-    S->need_ref = 1;
+    su->need_ref = 1;
     for (ump_idx f = 0; f < nf; f++)
-        S->need_ref &= !S->p_dir[f];
+        su->need_ref &= !su->p_dir[f];
     if (s->buoyant) /* the initial p_rgh as pi (solver.h) */
         for (ump_idx c = 0; c < nc; c++)
-            S->p[c] -= s->beta * (S->Tc[c] - s->t_ref) * S->ghc[c];
-    /* Step 1-4: mesh-only work, once */
+            st->p[c] -= s->beta * (st->Tc[c] - s->t_ref) * su->ghc[c];
+    /* Steps 1-4: mesh-only work, once */
     ppe_opts po = {s->ppe_solver, s->p_ref_cell, s->p_ref_value};
     if (s->p_ref_cell < 0 || s->p_ref_cell >= nc) {
         rc = UMP_FAIL(err, UMP_ERR_INPUT, "system/fvSolution: pRefCell %ld is not a cell (0..%ld)",
                       (long)s->p_ref_cell, (long)nc - 1);
         goto fail;
     }
-    if ((rc = lsq_build(m, &S->g, err)) != UMP_OK ||
-        (rc = ppe_create(m, S->g, S->p_dir, &po, &S->pe, err)) != UMP_OK ||
-        (rc = part_boundary_create(&S->bp, m, err)) != UMP_OK ||
-        (rc = part_create((size_t)nc * 2, &S->P, err)) != UMP_OK ||
-        (rc = part_seed_centroids(S->P, m, S->uc, S->vc, S->Tc, err)) != UMP_OK ||
-        (rc = part_bins_build(&S->bins, m, S->P, err)) != UMP_OK ||
-        (rc = grow_particle_work(S, S->P->n, err)) != UMP_OK)
+    if ((rc = lsq_build(m, &su->g, err)) != UMP_OK ||
+        (rc = ppe_create(m, su->g, su->p_dir, &po, &su->pe, err)) != UMP_OK ||
+        (rc = stencil_build(su, err)) != UMP_OK || (rc = owned_faces_build(su, err)) != UMP_OK ||
+        (rc = pgrad_build(su, &S->work[0], err)) != UMP_OK ||
+        (rc = part_boundary_create(&st->bp, m, err)) != UMP_OK ||
+        (rc = part_create((size_t)nc * 2, &st->P, err)) != UMP_OK ||
+        (rc = part_seed_centroids(st->P, m, st->uc, st->vc, st->Tc, err)) != UMP_OK ||
+        (rc = part_sort_by_cell(st->P, &st->bins, m, err)) != UMP_OK ||
+        (rc = grow_particle_work(st, st->P->n, err)) != UMP_OK ||
+        (rc = lsolve_rows_create(&st->kry, err)) != UMP_OK)
         goto fail;
-    /* scratch large enough for any N2 stencil (pressure-gradient MLS) */
-    ump_idx maxn2 = 0;
-    for (ump_idx c = 0; c < nc; c++)
-        maxn2 = UMP_MAX(maxn2, m->n2_off[c + 1] - m->n2_off[c]);
-    if ((rc = ensure_scratch(S, (size_t)maxn2 + 64, err)) != UMP_OK)
-        goto fail;
+    for (int t = 0; t < S->nthreads; t++)
+        if ((rc = work_reserve(&S->work[t], 4 * (size_t)su->st_max + 64, err)) != UMP_OK)
+            goto fail;
     /* face fluxes of the initial cell velocities (linear interpolation), as
      * icoFoam's createPhi: the first Courant number and inletOutlet need them */
     for (ump_idx f = 0; f < m->nfaces; f++) {
         ump_idx o = m->owner[f];
-        double u = S->uc[o], v = S->vc[o];
+        double u = st->uc[o], v = st->vc[o];
         if (f < m->ninternal) {
-            u = 0.5 * (u + S->uc[m->neigh[f]]);
-            v = 0.5 * (v + S->vc[m->neigh[f]]);
-        } else if (S->u_kind[f - m->ninternal] == BU_FIXED) {
-            u = S->ub[f - m->ninternal];
-            v = S->vb[f - m->ninternal];
-        } else if (S->u_kind[f - m->ninternal] == BU_SYMMETRY) {
+            u = 0.5 * (u + st->uc[m->neigh[f]]);
+            v = 0.5 * (v + st->vc[m->neigh[f]]);
+        } else if (su->u_kind[f - m->ninternal] == BU_FIXED) {
+            u = su->ub[f - m->ninternal];
+            v = su->vb[f - m->ninternal];
+        } else if (su->u_kind[f - m->ninternal] == BU_SYMMETRY) {
             u = v = 0;
         }
-        S->flux[f] = (u * m->nx[f] + v * m->ny[f]) * m->len[f];
+        st->flux[f] = (u * m->nx[f] + v * m->ny[f]) * m->len[f];
     }
-    set_boundary_particles(S);
+    set_boundary_particles(su, st);
     *out = S;
     return UMP_OK;
 nomem:
@@ -486,7 +855,9 @@ ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y,
                              const double *v, const double *T, const int64_t *id, const ump_idx *hint,
                              size_t *dropped, ump_err *err)
 {
-    part_set *P = S->P;
+    sol_state *st = &S->st;
+    part_set *P = st->P;
+    const mesh2d *m = S->su.m;
     P->n = 0;
     *dropped = 0;
     UMP_CALL(part_reserve(P, n, err));
@@ -494,13 +865,13 @@ ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y,
     for (size_t i = 0; i < n; i++) {
         double px = x[i], py = y[i];
         ump_idx cell, face;
-        ump_idx start = hint && hint[i] >= 0 && hint[i] < S->m->ncells ? hint[i] : 0;
-        if (part_locate(S->m, start, &px, &py, &cell, &face) != PART_INSIDE) {
+        ump_idx start = hint && hint[i] >= 0 && hint[i] < m->ncells ? hint[i] : 0;
+        if (part_locate(m, start, &px, &py, &cell, &face) != PART_INSIDE) {
             (*dropped)++;
             continue;
         }
         size_t idx;
-        double Ti = T ? T[i] : S->Tc ? S->Tc[cell] : 0.0;
+        double Ti = T ? T[i] : st->Tc ? st->Tc[cell] : 0.0;
         UMP_CALL(part_add(P, px, py, u[i], v[i], Ti, cell, &idx, err));
         if (id) {
             P->id[idx] = id[i];
@@ -510,353 +881,508 @@ ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y,
     }
     if (id && maxid + 1 > P->next_id)
         P->next_id = maxid + 1;
-    UMP_CALL(part_bins_build(&S->bins, S->m, P, err));
-    return grow_particle_work(S, P->n, err);
+    UMP_CALL(part_sort_by_cell(P, &st->bins, m, err));
+    return grow_particle_work(st, P->n, err);
 }
 
 void sol_set_pressure(sol *S, const double *p)
 {
-    memcpy(S->p, p, (size_t)S->m->ncells * sizeof *S->p);
+    memcpy(S->st.p, p, (size_t)S->su.m->ncells * sizeof *S->st.p);
 }
 
-/* The system I + dts L of the stored Laplacian rows (diagonal first in
- * each row) into S->A. */
-static ump_status scaled_system(sol *S, size_t n, double dts, ump_err *err)
+/* ---- Step 6: the implicit predictor ------------------------------------------ */
+
+/* Insertion sort of one row by column (only when particles are not sorted
+ * by cell: sortInterval 0 or > 1). */
+static void sort_row(ump_idx *ci, double *av, ump_idx n)
 {
-    size_t nz = (size_t)S->rp[n];
-    for (size_t k = 0; k < nz; k++)
-        S->cv[k] = dts * S->lv[k];
-    for (size_t i = 0; i < n; i++)
-        S->cv[S->rp[i]] += 1.0;
-    return lsolve_mat_from_csr(S->A, &S->Acap, (ump_idx)n, S->rp, S->ci, S->cv, err);
+    for (ump_idx a = 1; a < n; a++) {
+        ump_idx c = ci[a];
+        double v = av[a];
+        ump_idx b = a;
+        for (; b > 0 && ci[b - 1] > c; b--) {
+            ci[b] = ci[b - 1];
+            av[b] = av[b - 1];
+        }
+        ci[b] = c;
+        av[b] = v;
+    }
 }
 
-/* Step 6: implicit predictor (Eq. 14) with the particle Laplacian (Eq. 16),
- * the Boussinesq source (Eq. 4) and, buoyant, the energy equation (Eq. 37). */
-static ump_status predictor(sol *S, double dt, sol_stats *st, ump_err *err)
+/* Rows of I + dt nu L (Eqs. 14, 16) and the right-hand sides, with the
+ * Boussinesq source (Eq. 4) and, buoyant, the energy equation's (Eq. 37).
+ * Count -> prefix sum -> fill: row i has one entry per fluid particle of
+ * its cell's stencil (itself: the diagonal), boundary particles go to the
+ * right-hand side. */
+static ump_status step6_rows(sol *S, double dt, ump_err *err)
 {
-    const mesh2d *m = S->m;
-    part_set *P = S->P;
-    size_t n = P->n, nz = 0;
-    const sol_settings *set = &S->set;
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    const part_set *P = st->P;
+    const sol_settings *set = &su->set;
+    ump_idx nc = m->ncells;
+    size_t n = P->n;
+    /* count */
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+    for (ump_idx c = 0; c < nc; c++) {
+        ump_idx cnt = 0;
+        for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
+            ump_idx q = su->st_cell[a];
+            cnt += st->bins.off[q + 1] - st->bins.off[q];
+        }
+        st->cnt_cell[c] = cnt;
+    }
+    /* prefix sum */
+    st->rp[0] = 0;
+    for (size_t i = 0; i < n; i++) {
+        size_t e = (size_t)st->rp[i] + (size_t)st->cnt_cell[P->cell[i]];
+        UMP_CHECK(e < INT32_MAX, err, UMP_ERR_NOMEM, "predictor: %zu matrix entries overflow the index", e);
+        st->rp[i + 1] = (ump_idx)e;
+    }
+    size_t nz = (size_t)st->rp[n];
+    if (nz > st->rowcap || !st->ci) {
+        size_t cap = nz + nz / 2 + 1024;
+        ump_idx *ci = ump_realloc_array(st->ci, cap, sizeof *ci);
+        if (!ci)
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor: out of memory (%zu entries)", cap);
+        st->ci = ci;
+        double *av = ump_realloc_array(st->av, cap, sizeof *av);
+        if (!av)
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor: out of memory (%zu entries)", cap);
+        st->av = av;
+        st->rowcap = cap;
+    }
+    /* fill */
     int buoyant = set->buoyant;
     double dnu = dt * set->nu, dkap = dt * set->kappa;
     double gx = buoyant ? set->g[m->ax[0]] : 0, gy = buoyant ? set->g[m->ax[1]] : 0;
-    lap_params mps = {LAP_MPS, 3.1};
-    S->rp[0] = 0;
-    for (size_t i = 0; i < n; i++) {
-        size_t cnt;
-        ump_idx c = P->cell[i];
-        UMP_CALL(gather_offsets(S, i, &cnt, err));
-        double l0 = sqrt(m->area[c]);
-        ump_err lerr;
-        if (lap_coeffs(&set->lap, S->h, S->k, (int)cnt, l0, S->a, &lerr) != UMP_OK) {
-            st->lap_fallbacks++;
-            UMP_CALL(lap_coeffs(&mps, S->h, S->k, (int)cnt, l0, S->a, err));
-        }
-        /* grow the row storage: at most cnt + 1 entries in this row */
-        if (nz + cnt + 1 > S->rowcap) {
-            size_t ncap = 2 * (nz + cnt + 1) + 1024;
-            ump_idx *ci = ump_realloc_array(S->ci, ncap, sizeof *ci);
-            if (!ci)
-                return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor: out of memory");
-            S->ci = ci;
-            double *lv = ump_realloc_array(S->lv, ncap, sizeof *lv);
-            if (!lv)
-                return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor: out of memory");
-            S->lv = lv;
-            double *cv = ump_realloc_array(S->cv, ncap, sizeof *cv);
-            if (!cv)
-                return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor: out of memory");
-            S->cv = cv;
-            S->rowcap = ncap;
-        }
-        /* Laplacian row: L phi_i = sum_j a_j (phi_j - phi_i); boundary
-         * particles are known values, moved to the right-hand side:
-         * (1 + dt nu sum a_j) u*_i - dt nu sum_fluid a_j u*_j
-         *     = u^n_i + dt nu sum_bnd a_j u_b + dt S_i        (Eq. 14)
-         * and likewise T with dt kappa                         (Eq. 37) */
-        double suma = 0, bu = 0, bv = 0, bT = 0;
-        size_t dpos = nz++;
-        for (size_t j = 0; j < cnt; j++) {
-            double a = S->a[j];
-            suma += a;
-            if (S->nb[j].is_boundary) {
-                size_t q = S->nb[j].index;
-                bu += a * S->bp.u[q];
-                bv += a * S->bp.v[q];
-                bT += a * S->bp.T[q];
-            } else {
-                S->ci[nz] = (ump_idx)S->nb[j].index;
-                S->lv[nz++] = -a;
+    const lap_params mps = {LAP_MPS, 3.1};
+    const part_boundary *bp = &st->bp;
+#pragma omp parallel num_threads(S->nthreads)
+    {
+        sol_work *w = &S->work[thread_id()];
+#pragma omp for schedule(dynamic, 256)
+        for (size_t i = 0; i < n; i++) {
+            if (w->rc != UMP_OK)
+                continue;
+            ump_idx c = P->cell[i];
+            size_t cnt;
+            ump_err e;
+            ump_status rc = gather_cell(su, st, w, c, &cnt, &e);
+            if (rc != UMP_OK) {
+                work_fail(w, rc, &e);
+                continue;
             }
-        }
-        S->ci[dpos] = (ump_idx)i;
-        S->lv[dpos] = suma;
-        S->rp[i + 1] = (ump_idx)nz;
-        /* Boussinesq source per unit mass, -beta (T^n - TRef) g (Eq. 4) */
-        double b = buoyant ? -set->beta * (P->T[i] - set->t_ref) : 0;
-        S->rhs_u[i] = P->u[i] + dnu * bu + dt * b * gx;
-        S->rhs_v[i] = P->v[i] + dnu * bv + dt * b * gy;
-        S->rhs_T[i] = P->T[i] + dkap * bT;
-    }
-    UMP_CALL(scaled_system(S, n, dnu, err));
-    if (!S->kry || S->kry_n < (ump_idx)n) {
-        lsolve_krylov_free(&S->kry);
-        ump_idx kn = (ump_idx)(n + n / 2 + 16);
-        UMP_CALL(lsolve_krylov_create(kn, &S->kry, err));
-        S->kry_n = kn;
-    }
-    memcpy(S->us, P->u, n * sizeof *S->us); /* warm start from u^n */
-    memcpy(S->vs, P->v, n * sizeof *S->vs);
-    UMP_CALL(lsolve_bicgstab(S->kry, S->A, set->pred_pc, S->rhs_u, S->us, set->pred_tol, set->pred_maxit,
-                             &st->pred[0], err));
-    UMP_CALL(lsolve_bicgstab_again(S->kry, S->A, set->pred_pc, S->rhs_v, S->vs, set->pred_tol,
-                                   set->pred_maxit, &st->pred[1], err));
-    int ns = 2;
-    if (buoyant) {
-        /* Eq. 37: the same rows with dt kappa; T^n is the warm start */
-        memcpy(S->Ts, P->T, n * sizeof *S->Ts);
-        if (dkap == dnu) {
-            UMP_CALL(lsolve_bicgstab_again(S->kry, S->A, set->pred_pc, S->rhs_T, S->Ts, set->pred_tol,
-                                           set->pred_maxit, &st->pred[2], err));
-        } else {
-            UMP_CALL(scaled_system(S, n, dkap, err));
-            UMP_CALL(lsolve_bicgstab(S->kry, S->A, set->pred_pc, S->rhs_T, S->Ts, set->pred_tol,
-                                     set->pred_maxit, &st->pred[2], err));
-        }
-        ns = 3;
-    }
-    for (int k = 0; k < ns; k++)
-        if (st->pred[k].converged < 0)
-            return UMP_FAIL(err, UMP_ERR_SINGULAR, "predictor: BiCGSTAB broke down solving for %s "
-                            "(residual %g)", k == 2 ? "T" : k ? "v" : "u", st->pred[k].res);
-    if (buoyant)
-        memcpy(P->T, S->Ts, n * sizeof *P->T);
-    return UMP_OK;
-}
-
-/* MLS value (Eq. 32) at (x, y) in cell c of nv particle quantities:
- * fluid[k] [particles] and bnd[k] [boundary particles] give quantity k,
- * out[k] its value, and gx[k], gy[k] its derivatives (Eqs. 33-34) unless gx
- * is NULL; skip_face's own boundary particle is left out (-1: none). */
-static ump_status mls_particles(sol *S, ump_idx c, double x, double y, double mdx, double mdy,
-                                ump_idx skip_face, int nv, const double *const *fluid,
-                                const double *const *bnd, double *out, double *gx, double *gy,
-                                sol_stats *st, ump_err *err)
-{
-    size_t cnt;
-    UMP_CALL(gather(S, c, x, y, SIZE_MAX, &cnt, err));
-    int n = 0;
-    for (size_t j = 0; j < cnt && n < MLS_MAX_SAMPLES; j++) {
-        const part_nbr *q = &S->nb[j];
-        if (q->is_boundary && S->bp.face[q->index] == skip_face)
-            continue;
-        S->h[n] = q->dx;
-        S->k[n] = q->dy;
-        S->nb[n] = *q;
-        n++;
-    }
-    mls_info info;
-    mls_basis b = mls_weights(S->h, S->k, n, mdx, mdy, S->c0, gx ? S->cx : NULL, gx ? S->cy : NULL, &info);
-    if (b != MLS_QUADRATIC)
-        st->mls_fallbacks++;
-    for (int k = 0; k < nv; k++) {
-        double sum = 0, sx = 0, sy = 0;
-        for (int j = 0; j < n; j++) {
-            const part_nbr *q = &S->nb[j];
-            double v = q->is_boundary ? bnd[k][q->index] : fluid[k][q->index];
-            sum += S->c0[j] * v;
-            if (gx) {
-                sx += S->cx[j] * v;
-                sy += S->cy[j] * v;
+            int nn = 0;
+            for (size_t j = 0; j < cnt; j++) /* every neighbour but itself (no sample cap here) */
+                if (w->ref[j] != (ump_idx)i) {
+                    w->h[nn] = w->px[j] - P->x[i];
+                    w->k[nn++] = w->py[j] - P->y[i];
+                }
+            double l0 = sqrt(m->area[c]);
+            if (lap_coeffs(&set->lap, w->h, w->k, nn, l0, w->c0, &e) != UMP_OK) {
+                w->lap_fallbacks++;
+                if ((rc = lap_coeffs(&mps, w->h, w->k, nn, l0, w->c0, &e)) != UMP_OK) {
+                    work_fail(w, rc, &e);
+                    continue;
+                }
             }
+            /* L phi_i = sum_j a_j (phi_j - phi_i); boundary particles are
+             * Dirichlet data (Eq. 14): their a_j phi_j moves to the RHS */
+            ump_idx pos = st->rp[i], dpos = -1, *ci = st->ci;
+            double *av = st->av, suma = 0, bu = 0, bv = 0, bT = 0;
+            int jj = 0, sorted = 1;
+            for (size_t j = 0; j < cnt; j++) {
+                ump_idx r = w->ref[j];
+                if (r == (ump_idx)i) {
+                    dpos = pos++;
+                    ci[dpos] = r;
+                    continue;
+                }
+                double a = w->c0[jj++];
+                suma += a;
+                if (r < 0) {
+                    bu += a * bp->u[-1 - r];
+                    bv += a * bp->v[-1 - r];
+                    bT += a * bp->T[-1 - r];
+                } else {
+                    ci[pos] = r;
+                    av[pos] = -dnu * a;
+                    sorted &= pos == st->rp[i] || ci[pos - 1] < r;
+                    pos++;
+                }
+            }
+            av[dpos] = 1 + dnu * suma; /* I + dt nu L, Eq. 14 */
+            if (dpos > st->rp[i])
+                sorted &= ci[dpos - 1] < ci[dpos];
+            if (dpos + 1 < pos)
+                sorted &= ci[dpos + 1] > ci[dpos];
+            if (!sorted)
+                sort_row(ci + st->rp[i], av + st->rp[i], pos - st->rp[i]);
+            /* Boussinesq source per unit mass, -beta (T^n - TRef) g (Eq. 4) */
+            double b = buoyant ? -set->beta * (P->T[i] - set->t_ref) : 0;
+            st->rhs_u[i] = P->u[i] + dnu * bu + dt * b * gx;
+            st->rhs_v[i] = P->v[i] + dnu * bv + dt * b * gy;
+            st->rhs_T[i] = P->T[i] + dkap * bT; /* Eq. 37 */
         }
-        out[k] = sum;
-        if (gx) {
-            gx[k] = sx;
-            gy[k] = sy;
-        }
     }
-    return UMP_OK;
+    return work_collect(S, NULL, err);
 }
 
-/* MLS u* (Step 8) at (x, y) in cell c. */
-static ump_status mls_velocity(sol *S, ump_idx c, double x, double y, double mdx, double mdy,
-                               ump_idx skip_face, double *u, double *v, sol_stats *st, ump_err *err)
+/* Solve the rows of step6_rows for u*, v* (and T^{n+1}), warm-started from
+ * the particle values: u and v (and T when kappa = nu) in lockstep. */
+static ump_status step6_solve(sol *S, double dt, sol_stats *stats, ump_err *err)
 {
-    const double *fluid[2] = {S->us, S->vs}, *bnd[2] = {S->bp.u, S->bp.v};
-    double uv[2];
-    UMP_CALL(mls_particles(S, c, x, y, mdx, mdy, skip_face, 2, fluid, bnd, uv, NULL, NULL, st, err));
-    *u = uv[0];
-    *v = uv[1];
-    return UMP_OK;
-}
-
-/* MLS gradient of the centroid pressure at (x, y) in cell c (Eqs. 33-34). */
-static void mls_pressure_gradient(sol *S, ump_idx c, double x, double y, double *gx, double *gy,
-                                  sol_stats *st)
-{
-    const mesh2d *m = S->m;
-    int n = 0;
-    S->h[n] = m->cx[c] - x;
-    S->k[n] = m->cy[c] - y;
-    S->vals[n++] = S->p[c];
-    for (ump_idx k = m->n2_off[c]; k < m->n2_off[c + 1] && n < (int)S->nbcap; k++) {
-        ump_idx q = m->n2[k];
-        S->h[n] = m->cx[q] + (m->n2_sx ? m->n2_sx[k] : 0) - x;
-        S->k[n] = m->cy[q] + (m->n2_sy ? m->n2_sy[k] : 0) - y;
-        S->vals[n++] = S->p[q];
-    }
-    mls_info info;
-    mls_basis b = mls_weights(S->h, S->k, n, m->dx[c], m->dy[c], S->c0, S->cx, S->cy, &info);
-    if (b != MLS_QUADRATIC)
-        st->mls_fallbacks++;
-    double sx = 0, sy = 0;
-    for (int j = 0; j < n; j++) {
-        sx += S->cx[j] * S->vals[j];
-        sy += S->cy[j] * S->vals[j];
-    }
-    *gx = sx;
-    *gy = sy;
-}
-
-ump_status sol_step(sol *S, double dt, sol_stats *st, ump_err *err)
-{
-    const mesh2d *m = S->m;
-    part_set *P = S->P;
-    memset(st, 0, sizeof *st);
-    UMP_CALL(grow_particle_work(S, P->n, err));
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    part_set *P = st->P;
+    const sol_settings *set = &su->set;
     size_t n = P->n;
-    set_boundary_particles(S);
+    lsolve_csr A = {(ump_idx)n, st->rp, st->ci, st->av};
+    memcpy(st->us, P->u, n * sizeof *st->us);
+    memcpy(st->vs, P->v, n * sizeof *st->vs);
+    if (set->buoyant)
+        memcpy(st->Ts, P->T, n * sizeof *st->Ts);
+    double dnu = dt * set->nu, dkap = dt * set->kappa;
+    int together = set->buoyant && dkap == dnu;
+    const double *b[3] = {st->rhs_u, st->rhs_v, st->rhs_T};
+    double *x[3] = {st->us, st->vs, st->Ts};
+    UMP_CALL(lsolve_rows_setup(st->kry, &A, set->pred_pc, err));
+    UMP_CALL(lsolve_rows_bicgstab(st->kry, &A, together ? 3 : 2, b, x, set->pred_tol, set->pred_maxit,
+                                  stats->pred, err));
+    if (set->buoyant && !together) {
+        /* Eq. 37: the same rows with dt kappa, I + (kappa/nu)(A - I) */
+        double r = dkap / dnu;
+        size_t nz = (size_t)st->rp[n];
+        UMP_CHECK(dnu > 0 && isfinite(r), err, UMP_ERR_INPUT, "predictor: nu = %g, cannot scale to kappa",
+                  set->nu);
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+        for (size_t k = 0; k < nz; k++)
+            st->av[k] *= r;
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+        for (size_t i = 0; i < n; i++)
+            for (ump_idx k = st->rp[i]; k < st->rp[i + 1]; k++)
+                if (st->ci[k] == (ump_idx)i)
+                    st->av[k] += 1 - r;
+        UMP_CALL(lsolve_rows_setup(st->kry, &A, set->pred_pc, err));
+        UMP_CALL(lsolve_rows_bicgstab(st->kry, &A, 1, b + 2, x + 2, set->pred_tol, set->pred_maxit,
+                                      stats->pred + 2, err));
+    }
+    int ns = set->buoyant ? 3 : 2;
+    for (int k = 0; k < ns; k++)
+        if (stats->pred[k].converged < 0)
+            return UMP_FAIL(err, UMP_ERR_SINGULAR, "predictor: BiCGSTAB broke down solving for %s "
+                            "(residual %g)", k == 2 ? "T" : k ? "v" : "u", stats->pred[k].res);
+    if (set->buoyant)
+        memcpy(P->T, st->Ts, n * sizeof *P->T);
+    return UMP_OK;
+}
 
-    /* Step 6: u* */
-    UMP_CALL(predictor(S, dt, st, err));
+/* ---- Steps 7 and 10: moving particles ----------------------------------------- */
 
-    /* Step 7: r* = r^n + dt u* (Eq. 9), re-locate and re-bin */
+/* Locate-and-keep, once for both moves: particle i goes to
+ * (x0, y0) + dt (u, v), walking from cell0; if it leaves the domain it is
+ * marked keep = 0 and stays where it was for the rest of the step. */
+static void move_particles(sol *S, const double *u, const double *v, double dt)
+{
+    const mesh2d *m = S->su.m;
+    sol_state *st = &S->st;
+    part_set *P = st->P;
+    size_t n = P->n;
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (size_t i = 0; i < n; i++) {
-        S->x0[i] = P->x[i];
-        S->y0[i] = P->y[i];
-        S->cell0[i] = P->cell[i];
-        S->keep[i] = 1;
-        double x = P->x[i] + dt * S->us[i], y = P->y[i] + dt * S->vs[i];
+        double x = st->x0[i] + dt * u[i], y = st->y0[i] + dt * v[i];
         ump_idx cell, face;
-        if (part_locate(m, P->cell[i], &x, &y, &cell, &face) == PART_INSIDE) {
+        if (part_locate(m, st->cell0[i], &x, &y, &cell, &face) == PART_INSIDE) {
             P->x[i] = x;
             P->y[i] = y;
             P->cell[i] = cell;
         } else {
-            S->keep[i] = 0; /* left the domain: stays at r^n for this step's interpolation */
+            st->keep[i] = 0;
         }
     }
-    UMP_CALL(part_bins_build(&S->bins, m, P, err));
+}
 
-    /* Step 8: MLS u* at faces (fluxes) and centroids */
-    for (ump_idx f = 0; f < m->nfaces; f++) {
-        double u, v;
-        if (f >= m->ninternal) {
-            ump_idx b = f - m->ninternal;
-            if (S->u_kind[b] == BU_FIXED) {
-                S->flux[f] = (S->ub[b] * m->nx[f] + S->vb[b] * m->ny[f]) * m->len[f];
-                continue;
-            }
-            if (S->u_kind[b] == BU_SYMMETRY) {
-                S->flux[f] = 0;
-                continue;
-            }
-        }
-        ump_idx o = m->owner[f];
-        double mdx = m->dx[o], mdy = m->dy[o];
-        if (f < m->ninternal) {
-            mdx = 0.5 * (mdx + m->dx[m->neigh[f]]);
-            mdy = 0.5 * (mdy + m->dy[m->neigh[f]]);
-        }
-        UMP_CALL(mls_velocity(S, o, m->fx[f], m->fy[f], mdx, mdy, f, &u, &v, st, err));
-        S->flux[f] = (u * m->nx[f] + v * m->ny[f]) * m->len[f]; /* u*_f . A_f, Eq. 20 RHS */
+/* Step 7: r* = r^n + dt u* (Eq. 9), re-located and re-binned. */
+static ump_status step7_intermediate(sol *S, double dt, ump_err *err)
+{
+    sol_state *st = &S->st;
+    part_set *P = st->P;
+    size_t n = P->n;
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+    for (size_t i = 0; i < n; i++) {
+        st->x0[i] = P->x[i];
+        st->y0[i] = P->y[i];
+        st->cell0[i] = P->cell[i];
+        st->keep[i] = 1;
     }
-    for (ump_idx c = 0; c < m->ncells; c++)
-        UMP_CALL(mls_velocity(S, c, m->cx[c], m->cy[c], m->dx[c], m->dy[c], -1, &S->usc[c], &S->vsc[c],
-                              st, err));
+    move_particles(S, st->us, st->vs, dt);
+    return part_bins_build(&st->bins, S->su.m, P, err);
+}
 
-    /* Step 9: PPE, one solve with the factorization made at start-up */
-    UMP_CALL(ppe_solve(S->pe, S->flux, dt, S->pf, S->p, err));
-    ppe_face_gradient_flux(S->pe, S->p, S->pf, S->gflux);
+/* ---- Step 8: u* on the mesh ------------------------------------------------ */
+
+/* MLS value (Eq. 32) at (x, y) of the gathered samples: fluid quantities
+ * f[k], boundary quantities g[k], k < nv. */
+static void mls_value(sol_work *w, size_t cnt, double x, double y, double mdx, double mdy, ump_idx skip_bface,
+                      int nv, const double *const *f, const double *const *g, double *out)
+{
+    int n = offsets(w, cnt, x, y, -1, skip_bface);
+    mls_info info;
+    if (mls_weights(w->h, w->k, n, mdx, mdy, w->c0, NULL, NULL, &info) != MLS_QUADRATIC)
+        w->mls_fallbacks++;
+    for (int q = 0; q < nv; q++)
+        out[q] = apply(w->c0, w->sref, n, f[q], g[q]);
+}
+
+/* u* at face centres (the fluxes u*_f . A_f of Eq. 20) and centroids, by
+ * MLS from the particles at r*: one gather per cell serves its centroid and
+ * the faces it owns. */
+static void step8_mls_velocity(sol *S)
+{
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    ump_idx nc = m->ncells, ni = m->ninternal;
+    const double *f[2] = {st->us, st->vs}, *g[2] = {st->bp.u, st->bp.v};
+#pragma omp parallel num_threads(S->nthreads)
+    {
+        sol_work *w = &S->work[thread_id()];
+#pragma omp for schedule(static)
+        for (ump_idx fb = ni; fb < m->nfaces; fb++) { /* prescribed faces */
+            ump_idx b = fb - ni;
+            if (su->u_kind[b] == BU_FIXED)
+                st->flux[fb] = (su->ub[b] * m->nx[fb] + su->vb[b] * m->ny[fb]) * m->len[fb];
+            else if (su->u_kind[b] == BU_SYMMETRY)
+                st->flux[fb] = 0;
+        }
+#pragma omp for schedule(dynamic, 64)
+        for (ump_idx c = 0; c < nc; c++) {
+            if (w->rc != UMP_OK)
+                continue;
+            size_t cnt;
+            ump_err e;
+            ump_status rc = gather_cell(su, st, w, c, &cnt, &e);
+            if (rc != UMP_OK) {
+                work_fail(w, rc, &e);
+                continue;
+            }
+            double uv[2];
+            mls_value(w, cnt, m->cx[c], m->cy[c], m->dx[c], m->dy[c], -1, 2, f, g, uv);
+            st->usc[c] = uv[0];
+            st->vsc[c] = uv[1];
+            for (ump_idx a = su->of_off[c]; a < su->of_off[c + 1]; a++) {
+                ump_idx fa = su->of_face[a];
+                double mdx = m->dx[c], mdy = m->dy[c];
+                if (fa < ni) {
+                    mdx = 0.5 * (mdx + m->dx[m->neigh[fa]]);
+                    mdy = 0.5 * (mdy + m->dy[m->neigh[fa]]);
+                }
+                mls_value(w, cnt, m->fx[fa], m->fy[fa], mdx, mdy, fa >= ni ? fa - ni : -1, 2, f, g, uv);
+                st->flux[fa] = (uv[0] * m->nx[fa] + uv[1] * m->ny[fa]) * m->len[fa]; /* u*_f . A_f, Eq. 20 */
+            }
+        }
+    }
+}
+
+/* ---- Step 9: the pressure equation ----------------------------------------- */
+
+static ump_status step9_pressure(sol *S, double dt, ump_err *err)
+{
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    /* Eqs. 20, 22-25, one solve with the factorization made at start-up */
+    UMP_CALL(ppe_solve(su->pe, st->flux, dt, st->pf, st->p, err));
+    ppe_face_gradient_flux(su->pe, st->p, st->pf, st->gflux);
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx f = 0; f < m->nfaces; f++)
-        S->flux[f] -= dt * S->gflux[f]; /* corrected face flux u^{n+1}_f . A_f */
+        st->flux[f] -= dt * st->gflux[f]; /* corrected face flux u^{n+1}_f . A_f */
+    return UMP_OK;
+}
 
-    /* Step 10: velocity correction (Eq. 10) and final positions (Eq. 7) */
-    for (size_t i = 0; i < n; i++) {
-        double gx, gy;
-        mls_pressure_gradient(S, P->cell[i], P->x[i], P->y[i], &gx, &gy, st);
-        P->u[i] = S->us[i] - dt * gx;
-        P->v[i] = S->vs[i] - dt * gy;
-        double x = S->x0[i] + dt * P->u[i], y = S->y0[i] + dt * P->v[i];
-        ump_idx cell, face;
-        if (part_locate(m, S->cell0[i], &x, &y, &cell, &face) == PART_INSIDE) {
-            P->x[i] = x;
-            P->y[i] = y;
-            P->cell[i] = cell;
-        } else {
-            S->keep[i] = 0;
+/* ---- Step 10: correction ----------------------------------------------------- */
+
+static void step10_correct(sol *S, double dt, sol_stats *stats)
+{
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    part_set *P = st->P;
+    ump_idx nc = m->ncells;
+    size_t n = P->n;
+    /* the pressure-gradient operator applied: grad p and its derivatives at
+     * each centroid (pgrad_build) */
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+    for (ump_idx c = 0; c < nc; c++) {
+        double s[PG_N] = {0};
+        for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
+            const double *r = su->pg + (size_t)a * PG_N;
+            double pv = st->p[su->st_cell[a]];
+            for (int q = 0; q < PG_N; q++)
+                s[q] += r[q] * pv;
         }
+        for (int q = 0; q < PG_N; q++)
+            st->pgc[(size_t)c * PG_N + q] = s[q];
     }
+    /* u^{n+1} = u* - dt grad p (Eq. 10), grad p at r* from the fitted
+     * quadratic of the particle's cell */
+    long fb = 0;
+#pragma omp parallel for schedule(static) num_threads(S->nthreads) reduction(+ : fb)
+    for (size_t i = 0; i < n; i++) {
+        ump_idx c = P->cell[i];
+        const double *G = st->pgc + (size_t)c * PG_N;
+        double ax = P->x[i] - m->cx[c], ay = P->y[i] - m->cy[c];
+        double gx = G[PG_X] + G[PG_XX] * ax + G[PG_XY] * ay;
+        double gy = G[PG_Y] + G[PG_XY] * ax + G[PG_YY] * ay;
+        P->u[i] = st->us[i] - dt * gx;
+        P->v[i] = st->vs[i] - dt * gy;
+        fb += su->pg_fallback[c];
+    }
+    stats->mls_fallbacks += (int)fb;
+    /* r^{n+1} = r^n + dt u^{n+1} (Eq. 7) */
+    move_particles(S, P->u, P->v, dt);
     /* mesh velocity, Eq. 36, with the LS gradient of Eq. 26 */
-    lsq_gradient(S->g, S->p, S->gx, S->gy);
-    for (ump_idx c = 0; c < m->ncells; c++) {
-        S->uc[c] = S->usc[c] - dt * S->gx[c];
-        S->vc[c] = S->vsc[c] - dt * S->gy[c];
+    lsq_gradient(su->g, st->p, st->gx, st->gy);
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+    for (ump_idx c = 0; c < nc; c++) {
+        st->uc[c] = st->usc[c] - dt * st->gx[c];
+        st->vc[c] = st->vsc[c] - dt * st->gy[c];
     }
+}
 
-    /* Step 11: removal, then management and refill */
+/* ---- Step 11: removal, mesh temperature, management ---------------------------- */
+
+static ump_status step11_manage(sol *S, sol_stats *stats, ump_err *err)
+{
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    part_set *P = st->P;
     size_t before = P->n;
-    part_compact(P, S->keep);
-    st->left = before - P->n;
-    UMP_CALL(part_bins_build(&S->bins, m, P, err));
-    if (S->set.buoyant) {
+    part_compact(P, st->keep);
+    stats->left = before - P->n;
+    UMP_CALL(part_bins_build(&st->bins, m, P, err));
+    if (su->set.buoyant) {
         /* Step 10: mesh temperature T_P, MLS of the particle temperatures */
-        const double *fluid[1] = {P->T}, *bnd[1] = {S->bp.T};
-        for (ump_idx c = 0; c < m->ncells; c++)
-            UMP_CALL(mls_particles(S, c, m->cx[c], m->cy[c], m->dx[c], m->dy[c], -1, 1, fluid, bnd,
-                                   &S->Tc[c], NULL, NULL, st, err));
+        const double *f[1] = {P->T}, *g[1] = {st->bp.T};
+#pragma omp parallel num_threads(S->nthreads)
+        {
+            sol_work *w = &S->work[thread_id()];
+#pragma omp for schedule(dynamic, 64)
+            for (ump_idx c = 0; c < m->ncells; c++) {
+                if (w->rc != UMP_OK)
+                    continue;
+                size_t cnt;
+                ump_err e;
+                ump_status rc = gather_cell(su, st, w, c, &cnt, &e);
+                if (rc != UMP_OK) {
+                    work_fail(w, rc, &e);
+                    continue;
+                }
+                mls_value(w, cnt, m->cx[c], m->cy[c], m->dx[c], m->dy[c], -1, 1, f, g, &st->Tc[c]);
+            }
+        }
+        UMP_CALL(work_collect(S, stats, err));
     }
     part_manage_stats ms;
-    UMP_CALL(part_manage(P, &S->bins, m, S->set.variant, S->set.alpha, S->uc, S->vc, S->Tc, &ms, err));
-    st->added = ms.added;
-    st->deleted = ms.deleted_close + ms.deleted_extra;
-    st->np = P->n;
+    UMP_CALL(part_manage(P, &st->bins, m, su->set.variant, su->set.alpha, st->uc, st->vc, st->Tc, &ms, err));
+    stats->added = ms.added;
+    stats->deleted = ms.deleted_close + ms.deleted_extra;
+    stats->np = P->n;
+    st->steps++;
+    int every = su->set.sort_interval;
+    if (every > 0 && st->steps % every == 0)
+        UMP_CALL(part_sort_by_cell(P, &st->bins, m, err));
+    return grow_particle_work(st, P->n, err);
+}
 
-    /* continuity after correction, as icoFoam's continuityErrs.H */
-    memset(S->div, 0, (size_t)m->ncells * sizeof *S->div);
-    for (ump_idx f = 0; f < m->nfaces; f++) {
-        S->div[m->owner[f]] += S->flux[f];
-        if (f < m->ninternal)
-            S->div[m->neigh[f]] -= S->flux[f];
+/* ---- diagnostics ------------------------------------------------------------- */
+
+/* Per-cell flux sums (continuity) and |flux| sums (Courant) in parallel,
+ * their totals serially in cell order. */
+static void continuity_courant(sol *S, double dt, sol_stats *stats)
+{
+    const mesh2d *m = S->su.m;
+    sol_state *st = &S->st;
+    ump_idx nc = m->ncells;
+    double mx = 0, comax = 0;
+    double *gf = st->gflux; /* free after Step 9: per-cell sum |phi| */
+#pragma omp parallel for schedule(static) num_threads(S->nthreads) reduction(max : mx, comax)
+    for (ump_idx c = 0; c < nc; c++) {
+        double d = 0, a = 0;
+        for (ump_idx k = m->cell_face_off[c]; k < m->cell_face_off[c + 1]; k++) {
+            ump_idx f = m->cell_faces[k];
+            double phi = st->flux[f];
+            d += m->owner[f] == c ? phi : -phi;
+            a += fabs(phi);
+        }
+        st->div[c] = d;
+        gf[c] = a;
+        double r = fabs(d) / m->area[c], co = 0.5 * dt * a / m->area[c];
+        mx = r > mx ? r : mx;
+        comax = co > comax ? co : comax;
     }
-    double atot = 0, sl = 0, sg = 0, mx = 0;
-    for (ump_idx c = 0; c < m->ncells; c++) {
+    double atot = 0, sl = 0, sg = 0, sa = 0;
+    for (ump_idx c = 0; c < nc; c++) {
         atot += m->area[c];
-        sl += fabs(S->div[c]);
-        sg += S->div[c];
-        mx = fmax(mx, fabs(S->div[c]) / m->area[c]);
+        sl += fabs(st->div[c]);
+        sg += st->div[c];
+        sa += gf[c];
     }
-    st->cont_local = dt * sl / atot;
-    st->cont_global = dt * sg / atot;
-    st->cont_max = dt * mx;
-    sol_courant(S, dt, &st->co_mean, &st->co_max);
+    stats->cont_local = dt * sl / atot;
+    stats->cont_global = dt * sg / atot;
+    stats->cont_max = dt * mx;
+    stats->co_max = comax;
+    stats->co_mean = 0.5 * dt * sa / atot;
+}
+
+/* ---- the step ------------------------------------------------------------------ */
+
+ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
+{
+    sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    memset(stats, 0, sizeof *stats);
+    stage_clock clk;
+    stage_mark(&clk, NULL, -1);
+    UMP_CALL(grow_particle_work(st, st->P->n, err));
+    set_boundary_particles(su, st);
+    stage_mark(&clk, stats, SOL_STAGE_BOUNDARY);
+    UMP_CALL(step6_rows(S, dt, err));
+    UMP_CALL(work_collect(S, stats, err));
+    stage_mark(&clk, stats, SOL_STAGE_ROWS);
+    UMP_CALL(step6_solve(S, dt, stats, err));
+    stage_mark(&clk, stats, SOL_STAGE_SOLVE);
+    UMP_CALL(step7_intermediate(S, dt, err));
+    stage_mark(&clk, stats, SOL_STAGE_MOVE);
+    step8_mls_velocity(S);
+    UMP_CALL(work_collect(S, stats, err));
+    stage_mark(&clk, stats, SOL_STAGE_MLS);
+    UMP_CALL(step9_pressure(S, dt, err));
+    stage_mark(&clk, stats, SOL_STAGE_PPE);
+    step10_correct(S, dt, stats);
+    stage_mark(&clk, stats, SOL_STAGE_CORRECT);
+    UMP_CALL(step11_manage(S, stats, err));
+    stage_mark(&clk, stats, SOL_STAGE_MANAGE);
+    continuity_courant(S, dt, stats);
+    stage_mark(&clk, stats, SOL_STAGE_DIAG);
     return UMP_OK;
 }
 
 void sol_courant(const sol *S, double dt, double *mean, double *max)
 {
-    const mesh2d *m = S->m;
+    const mesh2d *m = S->su.m;
+    const double *flux = S->st.flux;
     double mx = 0, s = 0, atot = 0;
     /* 0.5 dt sum_f |phi_f| / V per cell (OpenFOAM CourantNo.H) */
     for (ump_idx c = 0; c < m->ncells; c++) {
         double sum = 0;
         for (ump_idx k = m->cell_face_off[c]; k < m->cell_face_off[c + 1]; k++)
-            sum += fabs(S->flux[m->cell_faces[k]]);
+            sum += fabs(flux[m->cell_faces[k]]);
         double co = 0.5 * dt * sum / m->area[c];
-        mx = fmax(mx, co);
+        mx = co > mx ? co : mx;
         s += sum;
         atot += m->area[c];
     }
@@ -864,26 +1390,36 @@ void sol_courant(const sol *S, double dt, double *mean, double *max)
     *mean = 0.5 * dt * s / atot;
 }
 
-const double *sol_cell_u(const sol *S) { return S->uc; }
-const double *sol_cell_v(const sol *S) { return S->vc; }
-const double *sol_cell_p(const sol *S) { return S->p; }
+const double *sol_cell_u(const sol *S) { return S->st.uc; }
+const double *sol_cell_v(const sol *S) { return S->st.vc; }
+const double *sol_cell_p(const sol *S) { return S->st.p; }
+
 /* Seed 001 Eqs. 13 and 22 per fluid particle, over the predictor's
  * neighbours (the same gather), r_e = re_factor * sqrt(cell area). */
 ump_status sol_particle_quality(sol *S, double *uN, double *tau, size_t *nfail, ump_err *err)
 {
-    part_set *P = S->P;
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    part_set *P = st->P;
+    sol_work *w = &S->work[0];
     size_t bad = 0;
     /* the bins are current between steps: sol_set_particles and the
-     * management of Step 11 (part_manage) rebuild them on exit */
+     * management of Step 11 rebuild them on exit */
     for (size_t i = 0; i < P->n; i++) {
         size_t cnt;
         ump_idx c = P->cell[i];
-        UMP_CALL(gather_offsets(S, i, &cnt, err));
-        const double *off[2] = {S->h, S->k};
+        UMP_CALL(gather_cell(su, st, w, c, &cnt, err));
+        int nn = 0;
+        for (size_t j = 0; j < cnt; j++)
+            if (w->ref[j] != (ump_idx)i) {
+                w->h[nn] = w->px[j] - P->x[i];
+                w->k[nn++] = w->py[j] - P->y[i];
+            }
+        const double *off[2] = {w->h, w->k};
         lap_quality q;
         ump_err lerr;
-        if (lap_quality_d(S->set.lap.re_factor, 2, off, (int)cnt, sqrt(S->m->area[c]), S->a, &q,
-                          &lerr) != UMP_OK) {
+        if (lap_quality_d(su->set.lap.re_factor, 2, off, nn, sqrt(su->m->area[c]), w->c0, &q, &lerr) !=
+            UMP_OK) {
             memset(&q, 0, sizeof q);
             bad++;
         }
@@ -898,60 +1434,64 @@ ump_status sol_particle_quality(sol *S, double *uN, double *tau, size_t *nfail, 
     return UMP_OK;
 }
 
-const part_set *sol_particles(const sol *S) { return S->P; }
+const part_set *sol_particles(const sol *S) { return S->st.P; }
 
 void sol_face_values(const sol *S, ump_idx f, double *u, double *v, double *p)
 {
-    const mesh2d *m = S->m;
+    const sol_setup *su = &S->su;
+    const sol_state *st = &S->st;
+    const mesh2d *m = su->m;
     ump_idx o = m->owner[f];
-    *u = S->uc[o];
-    *v = S->vc[o];
-    *p = S->p[o];
+    *u = st->uc[o];
+    *v = st->vc[o];
+    *p = st->p[o];
     if (f < m->ninternal)
         return;
     ump_idx b = f - m->ninternal;
-    if (S->u_kind[b] == BU_FIXED) {
-        *u = S->ub[b];
-        *v = S->vb[b];
-    } else if (S->u_kind[b] == BU_SYMMETRY) {
+    if (su->u_kind[b] == BU_FIXED) {
+        *u = su->ub[b];
+        *v = su->vb[b];
+    } else if (su->u_kind[b] == BU_SYMMETRY) {
         double un = *u * m->nx[f] + *v * m->ny[f];
         *u -= un * m->nx[f];
         *v -= un * m->ny[f];
-    } else if (S->u_kind[b] == BU_INLETOUTLET && S->flux[f] < 0) {
-        *u = S->ub[b];
-        *v = S->vb[b];
+    } else if (su->u_kind[b] == BU_INLETOUTLET && st->flux[f] < 0) {
+        *u = su->ub[b];
+        *v = su->vb[b];
     }
-    if (S->p_dir[f])
-        *p = S->pf[f];
+    if (su->p_dir[f])
+        *p = st->pf[f];
 }
 
-const double *sol_cell_T(const sol *S) { return S->Tc; }
+const double *sol_cell_T(const sol *S) { return S->st.Tc; }
 
 double sol_face_T(const sol *S, ump_idx f)
 {
-    if (!S->set.buoyant || f < S->m->ninternal)
-        return S->Tc ? S->Tc[S->m->owner[f]] : 0.0;
-    return S->bp.T[f - S->m->ninternal];
+    if (!S->su.set.buoyant || f < S->su.m->ninternal)
+        return S->st.Tc ? S->st.Tc[S->su.m->owner[f]] : 0.0;
+    return S->st.bp.T[f - S->su.m->ninternal];
 }
 
 void sol_buoyant_pressure(const sol *S, ump_idx c, ump_idx f, double *p, double *p_rgh)
 {
-    const sol_settings *s = &S->set;
+    const sol_settings *s = &S->su.set;
+    const sol_setup *su = &S->su;
+    const sol_state *st = &S->st;
     double shift = 0;
-    if (S->need_ref) { /* pEqn.H: p += pRefValue - p[pRefCell] */
+    if (su->need_ref) { /* pEqn.H: p += pRefValue - p[pRefCell] */
         ump_idx r = s->p_ref_cell;
-        shift = s->p_ref_value - (S->p[r] + S->ghc[r]);
+        shift = s->p_ref_value - (st->p[r] + su->ghc[r]);
     }
     double pi, gh, T;
     if (f >= 0) {
         double u, v;
         sol_face_values(S, f, &u, &v, &pi);
-        gh = S->ghf[f];
+        gh = su->ghf[f];
         T = sol_face_T(S, f);
     } else {
-        pi = S->p[c];
-        gh = S->ghc[c];
-        T = S->Tc[c];
+        pi = st->p[c];
+        gh = su->ghc[c];
+        T = st->Tc[c];
     }
     double rhok = 1.0 - s->beta * (T - s->t_ref);
     *p = pi + gh + shift;
@@ -960,24 +1500,28 @@ void sol_buoyant_pressure(const sol *S, ump_idx c, ump_idx f, double *p, double 
 
 ump_status sol_wall_dTdn(sol *S, ump_idx f, sol_grad_method how, double *dTdn, ump_err *err)
 {
-    const mesh2d *m = S->m;
-    if (!S->set.buoyant || f < m->ninternal || f >= m->nfaces)
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    if (!su->set.buoyant || f < m->ninternal || f >= m->nfaces)
         return UMP_FAIL(err, UMP_ERR_INPUT, "wall heat flux: face %ld is not a boundary face of a buoyant case",
                         (long)f);
     ump_idx o = m->owner[f];
     double nx = m->nx[f], ny = m->ny[f];
     if (how == SOL_GRAD_SNGRAD) {
         double d = (m->fx[f] - m->cx[o]) * nx + (m->fy[f] - m->cy[o]) * ny;
-        *dTdn = (sol_face_T(S, f) - S->Tc[o]) / d;
+        *dTdn = (sol_face_T(S, f) - st->Tc[o]) / d;
         return UMP_OK;
     }
     /* quadratic MLS derivative (Eqs. 33-34) at the face centre over the
-     * fluid and boundary particles of the owner's N2 stencil */
-    const double *fluid[1] = {S->P->T}, *bnd[1] = {S->bp.T};
-    double T, gx, gy;
-    sol_stats st = {0};
-    UMP_CALL(mls_particles(S, o, m->fx[f], m->fy[f], m->dx[o], m->dy[o], -1, 1, fluid, bnd, &T, &gx, &gy,
-                           &st, err));
+     * fluid and boundary particles of the owner's stencil */
+    sol_work *w = &S->work[0];
+    size_t cnt;
+    UMP_CALL(gather_cell(su, st, w, o, &cnt, err));
+    int n = offsets(w, cnt, m->fx[f], m->fy[f], -1, -1);
+    mls_weights(w->h, w->k, n, m->dx[o], m->dy[o], w->c0, w->cx, w->cy, NULL);
+    double gx = apply(w->cx, w->sref, n, st->P->T, st->bp.T);
+    double gy = apply(w->cy, w->sref, n, st->P->T, st->bp.T);
     *dTdn = gx * nx + gy * ny;
     return UMP_OK;
 }

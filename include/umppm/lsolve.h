@@ -113,4 +113,35 @@ ump_status lsolve_bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, 
 ump_status lsolve_bicgstab_again(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, const double *b,
                                  double *x, double tol, int maxit, lsolve_stats *st, ump_err *err);
 
+/* ---- row-compressed, several right-hand sides, threaded ------------------ */
+/* Row-compressed matrix (n x n): row i in ci/v[rp[i] .. rp[i+1]-1], columns
+ * strictly increasing within a row, the diagonal present. Borrowed arrays. */
+typedef struct lsolve_csr {
+    ump_idx n;
+    const ump_idx *rp, *ci;
+    const double *v;
+} lsolve_csr;
+
+#define LSOLVE_MAX_RHS 3       /* systems solved in lockstep (u, v, T) */
+#define LSOLVE_DOT_BLOCK 2048  /* rows per partial sum of a reduction */
+#define LSOLVE_ILU_BLOCK 4096  /* rows per diagonal block of the ILU(0) */
+
+/* BiCGSTAB workspace for row matrices (lsolve_rows.c); grows with the
+ * largest system served. Deterministic for any OpenMP thread count. */
+typedef struct lsolve_rows lsolve_rows;
+ump_status lsolve_rows_create(lsolve_rows **out, ump_err *err);
+void lsolve_rows_free(lsolve_rows **k);
+/* Build the preconditioner of A (ILU(0) of its diagonal blocks of
+ * LSOLVE_ILU_BLOCK rows, Jacobi, or none). UMP_ERR_INPUT if a row lacks its
+ * diagonal or its columns are not strictly increasing; UMP_ERR_SINGULAR on a
+ * zero pivot. */
+ump_status lsolve_rows_setup(lsolve_rows *k, const lsolve_csr *A, lsolve_pc pc, ump_err *err);
+/* Solve A x[r] = b[r], r < nrhs <= LSOLVE_MAX_RHS, each from its warm start
+ * x[r], to relative residual tol or maxit iterations, with the
+ * preconditioner of the last lsolve_rows_setup (same A). The systems iterate
+ * in lockstep, sharing every sweep over A; each gets exactly the iterates of
+ * a separate solve. st[r] as lsolve_bicgstab's. */
+ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, const double *const *b,
+                                double *const *x, double tol, int maxit, lsolve_stats *st, ump_err *err);
+
 #endif

@@ -92,6 +92,12 @@ typedef struct part_bins {
 
 /* UMP_ERR_INPUT if a particle's cell is >= ncells (bins then invalid). */
 ump_status part_bins_build(part_bins *b, const mesh2d *m, const part_set *s, ump_err *err);
+/* Reorder the particles by cell (stable: by index within a cell), an O(N)
+ * gather from the bins, so that neighbours in the mesh are neighbours in
+ * memory and the particles of a cell are consecutive; the bins are left
+ * current (identity order). Every particle must have a cell >= 0. Ids
+ * travel with the particles. */
+ump_status part_sort_by_cell(part_set *s, part_bins *b, const mesh2d *m, ump_err *err);
 void part_bins_free(part_bins *b);
 
 /* Boundary particles: one per boundary face (faces ninternal..nfaces-1). */

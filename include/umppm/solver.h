@@ -56,9 +56,20 @@ typedef struct sol_settings {
     double gh_ref;           /* ghRef = -|g| hRef (OpenFOAM's readhRef.H) */
     double beta, t_ref;      /* expansion coefficient [1/K], TRef [K] */
     double kappa;            /* thermal diffusivity nu/Pr [m^2/s] */
+    int sort_interval;       /* re-sort particles by cell every N steps (default 1; 0 never) */
 } sol_settings;
 
 void sol_default_settings(sol_settings *s);
+
+/* Stages of a step, timed separately (sol_stats.stage_cpu/stage_wall). */
+enum {
+    SOL_STAGE_BOUNDARY, SOL_STAGE_ROWS, SOL_STAGE_SOLVE, SOL_STAGE_MOVE, SOL_STAGE_MLS, SOL_STAGE_PPE,
+    SOL_STAGE_CORRECT, SOL_STAGE_MANAGE, SOL_STAGE_DIAG, SOL_NSTAGES
+};
+/* Name of a stage for logs ("predictor rows (Step 6)", ...). */
+const char *sol_stage_name(int stage);
+/* Threads the solver's parallel loops use (OpenMP: OMP_NUM_THREADS). */
+int sol_threads(void);
 
 typedef struct sol_stats {
     double co_mean, co_max;      /* Courant number of the new mesh velocity */
@@ -70,6 +81,8 @@ typedef struct sol_stats {
     double cont_local, cont_global, cont_max; /* continuity after correction:
                                     dt-weighted as icoFoam's continuityErrs,
                                     and the max |sum_f flux| / area */
+    double stage_cpu[SOL_NSTAGES];  /* CPU seconds (all threads) per stage */
+    double stage_wall[SOL_NSTAGES]; /* wall seconds per stage */
 } sol_stats;
 
 typedef struct sol sol; /* opaque */

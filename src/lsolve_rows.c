@@ -1,0 +1,587 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * lsolve_rows.c -- BiCGSTAB (van der Vorst, SIAM J. Sci. Stat. Comput. 13,
+ * 1992) on row-compressed matrices, several right-hand sides in lockstep,
+ * OpenMP-parallel and deterministic.
+ *
+ * Workload: the implicit particle predictor (Eq. 14) builds a new matrix
+ * every step, row by row, one row per particle; u and v (and T when its
+ * diffusivity equals nu) are solved with the same matrix. In lockstep,
+ * every sweep over the matrix (product, preconditioner) serves all systems
+ * at once, while each system keeps its own scalars, so the iterates are
+ * exactly those of separate solves.
+ *
+ * Threads: row loops are split statically over threads; every reduction
+ * (dot products, norms) sums fixed blocks of LSOLVE_DOT_BLOCK rows, each
+ * block in row order, then the block sums in block order -- the same
+ * additions in the same order whatever the number of threads, so 1 and N
+ * threads give bit-identical results.
+ *
+ * Preconditioner: ILU(0) of A restricted to diagonal blocks of
+ * LSOLVE_ILU_BLOCK consecutive rows (block Jacobi with ILU(0) blocks). The
+ * block size is a constant, not the thread count, so the preconditioner --
+ * and every iterate -- is the same for any number of threads, and the
+ * blocks factor and sweep in parallel. Particles are kept sorted by cell,
+ * so a block is a compact strip of the mesh and the couplings it drops are
+ * few: on the predictor matrices (I + dt nu L, strongly diagonally
+ * dominant) the iteration counts are those of global ILU(0). Jacobi and no
+ * preconditioner are also available. Right preconditioning: the residual
+ * tracked is the true one, recomputed at the end of every solve.
+ *
+ * Memory: 8 vectors per right-hand side, the ILU values, the diagonal
+ * pointers; grown (x1.5) only when a system is larger than any before.
+ */
+#include "umppm/lsolve.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define KRYLOV_MAX_RESTARTS 5
+
+struct lsolve_rows {
+    size_t ncap;       /* rows the vectors hold */
+    size_t zcap;       /* entries lu holds */
+    double *vec[LSOLVE_MAX_RHS][8];
+    double *dinv, *lu;
+    ump_idx *dptr, *iw;
+    double *part;      /* block partial sums [LSOLVE_MAX_RHS][nblocks] */
+    lsolve_pc pc;
+    ump_idx pc_n;      /* order the preconditioner was built for (-1: none) */
+};
+
+enum { V_R, V_RH, V_P, V_V, V_PH, V_S, V_SH, V_T };
+
+void lsolve_rows_free(lsolve_rows **pk)
+{
+    if (!pk || !*pk)
+        return;
+    lsolve_rows *k = *pk;
+    for (int r = 0; r < LSOLVE_MAX_RHS; r++)
+        for (int q = 0; q < 8; q++)
+            free(k->vec[r][q]);
+    free(k->dinv);
+    free(k->lu);
+    free(k->dptr);
+    free(k->iw);
+    free(k->part);
+    free(k);
+    *pk = NULL;
+}
+
+ump_status lsolve_rows_create(lsolve_rows **out, ump_err *err)
+{
+    *out = ump_alloc_array(1, sizeof **out);
+    UMP_CHECK(*out, err, UMP_ERR_NOMEM, "BiCGSTAB: out of memory");
+    (*out)->pc_n = -1;
+    return UMP_OK;
+}
+
+static size_t nblocks(ump_idx n, size_t b) { return ((size_t)n + b - 1) / b; }
+
+/* Vectors for n rows (all LSOLVE_MAX_RHS systems, allocated on first use of
+ * each: most runs solve two). */
+static ump_status reserve_rows(lsolve_rows *k, ump_idx n, int nrhs, ump_err *err)
+{
+    size_t need = n > 16 ? (size_t)n : 16;
+    int grow = need > k->ncap;
+    size_t nc = grow ? need + need / 2 + 16 : k->ncap;
+    for (int r = 0; r < LSOLVE_MAX_RHS; r++)
+        for (int q = 0; q < 8; q++) {
+            if (k->vec[r][q] && !grow)
+                continue;
+            if (!k->vec[r][q] && r >= nrhs)
+                continue;
+            double *v = ump_realloc_array(k->vec[r][q], nc, sizeof *v);
+            UMP_CHECK(v, err, UMP_ERR_NOMEM, "BiCGSTAB: out of memory for %zu unknowns", nc);
+            k->vec[r][q] = v;
+        }
+    if (grow || !k->dinv) {
+        double *d = ump_realloc_array(k->dinv, nc, sizeof *d);
+        UMP_CHECK(d, err, UMP_ERR_NOMEM, "BiCGSTAB: out of memory for %zu unknowns", nc);
+        k->dinv = d;
+        ump_idx *p = ump_realloc_array(k->dptr, nc, sizeof *p);
+        UMP_CHECK(p, err, UMP_ERR_NOMEM, "BiCGSTAB: out of memory for %zu unknowns", nc);
+        k->dptr = p;
+        ump_idx *w = ump_realloc_array(k->iw, nc, sizeof *w);
+        UMP_CHECK(w, err, UMP_ERR_NOMEM, "BiCGSTAB: out of memory for %zu unknowns", nc);
+        k->iw = w;
+        for (size_t i = k->ncap; i < nc; i++)
+            k->iw[i] = -1; /* rows set their marks and clear them again */
+        double *pt = ump_realloc_array(k->part, LSOLVE_MAX_RHS * nblocks((ump_idx)nc, LSOLVE_DOT_BLOCK) + 1,
+                                       sizeof *pt);
+        UMP_CHECK(pt, err, UMP_ERR_NOMEM, "BiCGSTAB: out of memory for %zu unknowns", nc);
+        k->part = pt;
+        k->ncap = nc;
+    }
+    return UMP_OK;
+}
+
+/* ---- deterministic kernels ---------------------------------------------- */
+
+/* d[r] = (a[r], b[r]) for r < m, by fixed blocks (see the top). */
+static void dots(lsolve_rows *k, ump_idx n, int m, double *const *a, double *const *b, double *d)
+{
+    ump_idx nb = (ump_idx)nblocks(n, LSOLVE_DOT_BLOCK);
+    double *part = k->part;
+#pragma omp parallel for schedule(static)
+    for (ump_idx q = 0; q < nb; q++) {
+        ump_idx i0 = q * LSOLVE_DOT_BLOCK, i1 = i0 + LSOLVE_DOT_BLOCK < n ? i0 + LSOLVE_DOT_BLOCK : n;
+        for (int r = 0; r < m; r++) {
+            const double *x = a[r], *y = b[r];
+            double s = 0;
+            for (ump_idx i = i0; i < i1; i++)
+                s += x[i] * y[i];
+            part[(size_t)r * nb + q] = s;
+        }
+    }
+    for (int r = 0; r < m; r++) {
+        double s = 0;
+        for (ump_idx q = 0; q < nb; q++)
+            s += part[(size_t)r * nb + q];
+        d[r] = s;
+    }
+}
+
+/* y[r] = A x[r] for r < m: one sweep over A for all systems. */
+static void spmv(const lsolve_csr *A, int m, double *const *x, double *const *y)
+{
+    const ump_idx n = A->n, *rp = A->rp, *ci = A->ci;
+    const double *v = A->v;
+    if (m == 1) {
+        const double *x0 = x[0];
+        double *y0 = y[0];
+#pragma omp parallel for schedule(static)
+        for (ump_idx i = 0; i < n; i++) {
+            double s = 0;
+            for (ump_idx p = rp[i]; p < rp[i + 1]; p++)
+                s += v[p] * x0[ci[p]];
+            y0[i] = s;
+        }
+        return;
+    }
+    if (m == 2) {
+        const double *x0 = x[0], *x1 = x[1];
+        double *y0 = y[0], *y1 = y[1];
+#pragma omp parallel for schedule(static)
+        for (ump_idx i = 0; i < n; i++) {
+            double s0 = 0, s1 = 0;
+            for (ump_idx p = rp[i]; p < rp[i + 1]; p++) {
+                ump_idx c = ci[p];
+                s0 += v[p] * x0[c];
+                s1 += v[p] * x1[c];
+            }
+            y0[i] = s0;
+            y1[i] = s1;
+        }
+        return;
+    }
+#pragma omp parallel for schedule(static)
+    for (ump_idx i = 0; i < n; i++) {
+        double s[LSOLVE_MAX_RHS] = {0};
+        for (ump_idx p = rp[i]; p < rp[i + 1]; p++) {
+            ump_idx c = ci[p];
+            for (int r = 0; r < m; r++)
+                s[r] += v[p] * x[r][c];
+        }
+        for (int r = 0; r < m; r++)
+            y[r][i] = s[r];
+    }
+}
+
+/* z[r] = M^-1 q[r] for r < m. */
+static void apply_pc(const lsolve_rows *k, const lsolve_csr *A, int m, double *const *q, double *const *z)
+{
+    const ump_idx n = A->n, *rp = A->rp, *ci = A->ci, *dp = k->dptr;
+    switch (k->pc) {
+    case LSOLVE_PC_NONE:
+        for (int r = 0; r < m; r++)
+            memcpy(z[r], q[r], sizeof(double) * (size_t)n);
+        return;
+    case LSOLVE_PC_JACOBI:
+#pragma omp parallel for schedule(static)
+        for (ump_idx i = 0; i < n; i++)
+            for (int r = 0; r < m; r++)
+                z[r][i] = k->dinv[i] * q[r][i];
+        return;
+    case LSOLVE_PC_ILU0: {
+        const double *lu = k->lu;
+        ump_idx nb = (ump_idx)nblocks(n, LSOLVE_ILU_BLOCK);
+#pragma omp parallel for schedule(static)
+        for (ump_idx b = 0; b < nb; b++) {
+            ump_idx lo = b * LSOLVE_ILU_BLOCK, hi = lo + LSOLVE_ILU_BLOCK < n ? lo + LSOLVE_ILU_BLOCK : n;
+            /* L y = q (unit lower), within the block */
+            for (ump_idx i = lo; i < hi; i++) {
+                double s[LSOLVE_MAX_RHS];
+                for (int r = 0; r < m; r++)
+                    s[r] = q[r][i];
+                for (ump_idx p = rp[i]; p < dp[i]; p++) {
+                    ump_idx c = ci[p];
+                    if (c < lo)
+                        continue;
+                    for (int r = 0; r < m; r++)
+                        s[r] -= lu[p] * z[r][c];
+                }
+                for (int r = 0; r < m; r++)
+                    z[r][i] = s[r];
+            }
+            /* U z = y, within the block */
+            for (ump_idx i = hi - 1; i >= lo; i--) {
+                double s[LSOLVE_MAX_RHS];
+                for (int r = 0; r < m; r++)
+                    s[r] = z[r][i];
+                for (ump_idx p = dp[i] + 1; p < rp[i + 1]; p++) {
+                    ump_idx c = ci[p];
+                    if (c >= hi)
+                        break;
+                    for (int r = 0; r < m; r++)
+                        s[r] -= lu[p] * z[r][c];
+                }
+                double d = 1 / lu[dp[i]];
+                for (int r = 0; r < m; r++)
+                    z[r][i] = s[r] * d;
+            }
+        }
+        return;
+    }
+    }
+}
+
+/* ---- preconditioner ------------------------------------------------------ */
+
+ump_status lsolve_rows_setup(lsolve_rows *k, const lsolve_csr *A, lsolve_pc pc, ump_err *err)
+{
+    const ump_idx n = A->n, *rp = A->rp, *ci = A->ci;
+    k->pc_n = -1;
+    UMP_CALL(reserve_rows(k, n, 1, err));
+    /* diagonal positions (columns sorted in each row) */
+    ump_idx bad = -1;
+#pragma omp parallel for schedule(static)
+    for (ump_idx i = 0; i < n; i++) {
+        ump_idx d = -1;
+        for (ump_idx p = rp[i]; p < rp[i + 1]; p++) {
+            if (p > rp[i] && ci[p] <= ci[p - 1]) {
+                d = -1; /* unsorted or duplicated columns */
+                break;
+            }
+            if (ci[p] == i)
+                d = p;
+        }
+        k->dptr[i] = d;
+        if (d < 0) {
+#pragma omp critical(lsolve_rows_bad)
+            if (bad < 0 || i < bad)
+                bad = i;
+        }
+    }
+    UMP_CHECK(bad < 0, err, UMP_ERR_INPUT,
+              "BiCGSTAB: row %ld has no diagonal entry or unsorted/duplicate columns", (long)bad);
+    if (pc == LSOLVE_PC_JACOBI) {
+        for (ump_idx i = 0; i < n; i++) {
+            double d = A->v[k->dptr[i]];
+            UMP_CHECK(d != 0.0 && isfinite(d), err, UMP_ERR_SINGULAR,
+                      "BiCGSTAB/Jacobi: zero or non-finite diagonal in row %ld", (long)i);
+            k->dinv[i] = 1 / d;
+        }
+    } else if (pc == LSOLVE_PC_ILU0) {
+        size_t nnz = (size_t)rp[n];
+        if (nnz > k->zcap || !k->lu) {
+            size_t nc = nnz + nnz / 2 + 16;
+            double *lu = ump_realloc_array(k->lu, nc, sizeof *lu);
+            UMP_CHECK(lu, err, UMP_ERR_NOMEM, "BiCGSTAB/ILU(0): out of memory for %zu entries", nc);
+            k->lu = lu;
+            k->zcap = nc;
+        }
+        double *lu = k->lu;
+        const ump_idx *dp = k->dptr;
+        ump_idx *iw = k->iw;
+        memcpy(lu, A->v, sizeof *lu * nnz);
+        ump_idx nb = (ump_idx)nblocks(n, LSOLVE_ILU_BLOCK);
+        bad = -1;
+        /* IKJ ILU(0) of each diagonal block; a block marks only its own
+         * columns in iw, so blocks run in parallel on one marker array. */
+#pragma omp parallel for schedule(static)
+        for (ump_idx b = 0; b < nb; b++) {
+            ump_idx lo = b * LSOLVE_ILU_BLOCK, hi = lo + LSOLVE_ILU_BLOCK < n ? lo + LSOLVE_ILU_BLOCK : n;
+            for (ump_idx i = lo; i < hi; i++) {
+                for (ump_idx p = rp[i]; p < rp[i + 1]; p++)
+                    if (ci[p] >= lo && ci[p] < hi)
+                        iw[ci[p]] = p;
+                for (ump_idx p = rp[i]; p < dp[i]; p++) {
+                    ump_idx c = ci[p];
+                    if (c < lo)
+                        continue;
+                    lu[p] /= lu[dp[c]]; /* l_ic = a_ic / u_cc */
+                    for (ump_idx q = dp[c] + 1; q < rp[c + 1]; q++) {
+                        ump_idx j = ci[q];
+                        if (j >= hi)
+                            break;
+                        ump_idx w = iw[j];
+                        if (w >= 0)
+                            lu[w] -= lu[p] * lu[q]; /* a_ij -= l_ic u_cj, within the pattern */
+                    }
+                }
+                for (ump_idx p = rp[i]; p < rp[i + 1]; p++)
+                    if (ci[p] >= lo && ci[p] < hi)
+                        iw[ci[p]] = -1;
+                double d = lu[dp[i]];
+                if (!(d != 0.0 && isfinite(d))) {
+#pragma omp critical(lsolve_rows_bad)
+                    if (bad < 0 || i < bad)
+                        bad = i;
+                    break;
+                }
+            }
+        }
+        UMP_CHECK(bad < 0, err, UMP_ERR_SINGULAR, "BiCGSTAB/ILU(0): zero or non-finite pivot in row %ld",
+                  (long)bad);
+    }
+    k->pc = pc;
+    k->pc_n = n;
+    return UMP_OK;
+}
+
+/* ---- BiCGSTAB in lockstep ------------------------------------------------ */
+
+typedef struct sysstate {
+    double bnorm, rho, rho_old, alpha, omega, res;
+    int first, restarts, it, done; /* done: 1 converged, 0 running/maxit, -1 breakdown */
+    int active;
+} sysstate;
+
+/* true residual r = b - A x of system r, its relative norm */
+static double true_residual(lsolve_rows *k, const lsolve_csr *A, const double *b, double *x, double *r)
+{
+    double *xs[1] = {x}, *rs[1] = {r}, d;
+    spmv(A, 1, xs, rs);
+    ump_idx n = A->n;
+#pragma omp parallel for schedule(static)
+    for (ump_idx i = 0; i < n; i++)
+        r[i] = b[i] - r[i];
+    dots(k, n, 1, rs, rs, &d);
+    return sqrt(d);
+}
+
+/* A system that claims convergence or broke down: check the true residual,
+ * then finish it or restart it from its current x. */
+static void settle(lsolve_rows *k, const lsolve_csr *A, sysstate *s, const double *b, double *x, double *r,
+                   double *rh, double tol, int maxit, int broke)
+{
+    s->res = true_residual(k, A, b, x, r) / s->bnorm;
+    if (s->res <= tol) {
+        s->done = 1;
+        s->active = 0;
+        return;
+    }
+    if (!isfinite(s->res) || (broke && s->restarts >= KRYLOV_MAX_RESTARTS)) {
+        s->done = -1;
+        s->active = 0;
+        return;
+    }
+    if (s->restarts++ >= KRYLOV_MAX_RESTARTS || s->it >= maxit) {
+        s->done = broke ? -1 : 0;
+        s->active = 0;
+        return;
+    }
+    memcpy(rh, r, sizeof *rh * (size_t)A->n); /* restart: shadow residual rh = r */
+    s->rho_old = s->alpha = s->omega = 1;
+    s->first = 1;
+}
+
+ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, const double *const *b,
+                                double *const *x, double tol, int maxit, lsolve_stats *st, ump_err *err)
+{
+    const ump_idx n = A->n;
+    UMP_CHECK(nrhs >= 1 && nrhs <= LSOLVE_MAX_RHS, err, UMP_ERR_INPUT, "BiCGSTAB: %d right-hand sides", nrhs);
+    UMP_CHECK(tol > 0 && maxit >= 0, err, UMP_ERR_INPUT, "BiCGSTAB: tolerance %g, %d iterations", tol, maxit);
+    UMP_CHECK(k->pc_n == n, err, UMP_ERR_INPUT,
+              "BiCGSTAB: no preconditioner was built for a matrix of order %ld", (long)n);
+    UMP_CALL(reserve_rows(k, n, nrhs, err));
+    sysstate s[LSOLVE_MAX_RHS];
+    double *R[LSOLVE_MAX_RHS], *RH[LSOLVE_MAX_RHS], *P[LSOLVE_MAX_RHS], *V[LSOLVE_MAX_RHS],
+        *PH[LSOLVE_MAX_RHS], *S[LSOLVE_MAX_RHS], *SH[LSOLVE_MAX_RHS], *T[LSOLVE_MAX_RHS],
+        *X[LSOLVE_MAX_RHS], *B[LSOLVE_MAX_RHS], d[LSOLVE_MAX_RHS], d2[LSOLVE_MAX_RHS];
+    for (int r = 0; r < nrhs; r++) {
+        memset(&st[r], 0, sizeof st[r]);
+        memset(&s[r], 0, sizeof s[r]);
+        B[r] = (double *)b[r];
+        X[r] = x[r];
+        R[r] = k->vec[r][V_R];
+    }
+    dots(k, n, nrhs, B, B, d);
+    spmv(A, nrhs, X, R);
+    for (int r = 0; r < nrhs; r++) {
+        s[r].bnorm = sqrt(d[r]);
+        UMP_CHECK(isfinite(s[r].bnorm), err, UMP_ERR_INPUT, "BiCGSTAB: right-hand side has NaN or inf");
+        double *rr = R[r];
+        const double *br = b[r];
+#pragma omp parallel for schedule(static)
+        for (ump_idx i = 0; i < n; i++)
+            rr[i] = br[i] - rr[i];
+    }
+    dots(k, n, nrhs, R, R, d);
+    for (int r = 0; r < nrhs; r++) {
+        if (s[r].bnorm == 0) {
+            memset(x[r], 0, sizeof(double) * (size_t)n); /* the exact solution */
+            s[r].done = 1;
+            s[r].res = st[r].res0 = 0;
+            continue;
+        }
+        s[r].res = st[r].res0 = sqrt(d[r]) / s[r].bnorm;
+        s[r].done = s[r].res <= tol ? 1 : 0;
+        s[r].active = !s[r].done && maxit > 0;
+        s[r].rho_old = s[r].alpha = s[r].omega = 1;
+        s[r].first = 1;
+        if (s[r].active)
+            memcpy(k->vec[r][V_RH], R[r], sizeof(double) * (size_t)n);
+    }
+    /* the lockstep iteration: systems still running form the list a[] */
+    for (;;) {
+        int a[LSOLVE_MAX_RHS], m = 0;
+        for (int r = 0; r < nrhs; r++)
+            if (s[r].active)
+                a[m++] = r;
+        if (!m)
+            break;
+        for (int j = 0; j < m; j++) {
+            int r = a[j];
+            R[j] = k->vec[r][V_R];
+            RH[j] = k->vec[r][V_RH];
+            P[j] = k->vec[r][V_P];
+            V[j] = k->vec[r][V_V];
+            PH[j] = k->vec[r][V_PH];
+            S[j] = k->vec[r][V_S];
+            SH[j] = k->vec[r][V_SH];
+            T[j] = k->vec[r][V_T];
+            X[j] = x[r];
+            B[j] = (double *)b[r];
+        }
+        dots(k, n, m, RH, R, d); /* rho = (rh, r) */
+        int live[LSOLVE_MAX_RHS], ml = 0;
+        for (int j = 0; j < m; j++) {
+            sysstate *q = &s[a[j]];
+            q->rho = d[j];
+            if (q->rho == 0.0 || !isfinite(q->rho)) {
+                settle(k, A, q, B[j], X[j], R[j], RH[j], tol, maxit, 1);
+                continue;
+            }
+            live[ml++] = j;
+        }
+        /* compact the pointer lists to the live systems */
+#define COMPACT(L)                             \
+        do {                                   \
+            for (int j_ = 0; j_ < ml; j_++)    \
+                L[j_] = L[live[j_]];           \
+        } while (0)
+        {
+            int aa[LSOLVE_MAX_RHS];
+            for (int j = 0; j < ml; j++)
+                aa[j] = a[live[j]];
+            COMPACT(R); COMPACT(RH); COMPACT(P); COMPACT(V); COMPACT(PH); COMPACT(S); COMPACT(SH);
+            COMPACT(T); COMPACT(X); COMPACT(B);
+            memcpy(a, aa, sizeof(int) * (size_t)ml);
+            m = ml;
+        }
+        if (!m)
+            continue;
+        for (int j = 0; j < m; j++) {
+            sysstate *q = &s[a[j]];
+            double *pp = P[j], *rr = R[j], *vv = V[j];
+            if (q->first) {
+                memcpy(pp, rr, sizeof(double) * (size_t)n);
+                q->first = 0;
+            } else {
+                double beta = (q->rho / q->rho_old) * (q->alpha / q->omega), om = q->omega;
+#pragma omp parallel for schedule(static)
+                for (ump_idx i = 0; i < n; i++)
+                    pp[i] = rr[i] + beta * (pp[i] - om * vv[i]); /* p <- r + b (p - w v) */
+            }
+        }
+        apply_pc(k, A, m, P, PH); /* ph <- M^-1 p */
+        spmv(A, m, PH, V);        /* v <- A ph */
+        dots(k, n, m, RH, V, d);  /* sigma = (rh, v) */
+        ml = 0;
+        for (int j = 0; j < m; j++) {
+            sysstate *q = &s[a[j]];
+            if (d[j] == 0.0 || !isfinite(d[j])) {
+                settle(k, A, q, B[j], X[j], R[j], RH[j], tol, maxit, 1);
+                continue;
+            }
+            q->alpha = q->rho / d[j];
+            double al = q->alpha, *ss = S[j], *rr = R[j], *vv = V[j];
+#pragma omp parallel for schedule(static)
+            for (ump_idx i = 0; i < n; i++)
+                ss[i] = rr[i] - al * vv[i]; /* s <- r - a v */
+            q->it++;
+            live[ml++] = j;
+        }
+        {
+            int aa[LSOLVE_MAX_RHS];
+            for (int j = 0; j < ml; j++)
+                aa[j] = a[live[j]];
+            COMPACT(R); COMPACT(RH); COMPACT(P); COMPACT(V); COMPACT(PH); COMPACT(S); COMPACT(SH);
+            COMPACT(T); COMPACT(X); COMPACT(B);
+            memcpy(a, aa, sizeof(int) * (size_t)ml);
+            m = ml;
+        }
+        if (!m)
+            continue;
+        dots(k, n, m, S, S, d); /* |s| */
+        ml = 0;
+        for (int j = 0; j < m; j++) {
+            sysstate *q = &s[a[j]];
+            if (sqrt(d[j]) / q->bnorm <= tol) { /* converged on the half step */
+                double al = q->alpha, *xx = X[j], *ph = PH[j];
+#pragma omp parallel for schedule(static)
+                for (ump_idx i = 0; i < n; i++)
+                    xx[i] += al * ph[i]; /* x <- x + a ph */
+                settle(k, A, q, B[j], X[j], R[j], RH[j], tol, maxit, 0);
+                continue;
+            }
+            live[ml++] = j;
+        }
+        {
+            int aa[LSOLVE_MAX_RHS];
+            for (int j = 0; j < ml; j++)
+                aa[j] = a[live[j]];
+            COMPACT(R); COMPACT(RH); COMPACT(P); COMPACT(V); COMPACT(PH); COMPACT(S); COMPACT(SH);
+            COMPACT(T); COMPACT(X); COMPACT(B);
+            memcpy(a, aa, sizeof(int) * (size_t)ml);
+            m = ml;
+        }
+#undef COMPACT
+        if (!m)
+            continue;
+        apply_pc(k, A, m, S, SH); /* sh <- M^-1 s */
+        spmv(A, m, SH, T);        /* t <- A sh */
+        dots(k, n, m, T, T, d);
+        dots(k, n, m, T, S, d2);
+        for (int j = 0; j < m; j++) {
+            sysstate *q = &s[a[j]];
+            q->omega = d[j] > 0.0 ? d2[j] / d[j] : 0.0; /* w <- (t, s) / (t, t) */
+            double al = q->alpha, om = q->omega, *xx = X[j], *rr = R[j], *ph = PH[j], *sh = SH[j],
+                   *ss = S[j], *tt = T[j];
+#pragma omp parallel for schedule(static)
+            for (ump_idx i = 0; i < n; i++) {
+                xx[i] += al * ph[i] + om * sh[i]; /* x <- x + a ph + w sh */
+                rr[i] = ss[i] - om * tt[i];       /* r <- s - w t */
+            }
+        }
+        dots(k, n, m, R, R, d);
+        for (int j = 0; j < m; j++) {
+            sysstate *q = &s[a[j]];
+            q->res = sqrt(d[j]) / q->bnorm;
+            if (!isfinite(q->res) || q->omega == 0.0)
+                settle(k, A, q, B[j], X[j], R[j], RH[j], tol, maxit, 1);
+            else if (q->res <= tol || q->it >= maxit)
+                settle(k, A, q, B[j], X[j], R[j], RH[j], tol, maxit, 0);
+            else
+                q->rho_old = q->rho;
+        }
+    }
+    for (int r = 0; r < nrhs; r++) {
+        st[r].iterations = s[r].it;
+        st[r].res = s[r].res;
+        st[r].converged = s[r].done;
+    }
+    return UMP_OK;
+}
