@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # bench/laplacianAccuracy.sh [-out DIR] [-seed 1]
-# The particle-Laplacian experiments of seed 001 (Hwang, Ng & Sheu 2016,
-# Section 4) for CPM, IPS, PS and MPS with tools/laplacianAccuracy, on
+# The particle-Laplacian experiments of Hwang, Ng & Sheu (2016) [HNS16],
+# Section 4, for CPM, IPS, PS and MPS with tools/laplacianAccuracy, on
 # irregular clouds x = (i + alpha (chi - 0.5)) dx (Eqs. 35, 41, 45), r_e = 2 dx.
 # Prints tables and writes gnuplot PNGs to DIR (default build/bench/laplacian):
 #   1. Laplacian of prod sin(2 pi x_d), relative L2 error vs nC (alpha 0.3),
-#      1-, 2-, 3-D, with observed orders (seed 001 Figs. 5a, 13a, 18a):
+#      1-, 2-, 3-D, with observed orders ([HNS16] Figs. 5a, 13a, 18a):
 #      lap_operator_<d>D.png
 #   2. the same vs alpha (nC 128, 64, 32; Figs. 5b, 13b, 18b):
 #      lap_alpha_<d>D.png
@@ -125,6 +125,6 @@ dat=$out/threepoint.dat
 done > "$dat"
 printf "%5s %10s %10s %10s\n" alpha PS IPS Eq33b
 awk '{ printf "%5s %10.5f %10.5f %10.5f\n", $1, $2, $3, $4 }' "$dat"
-plot "$out/lap_threepoint.png" "Three-point problem, phi* = 2 (seed 001 Fig. 1b)" alpha "reality factor" no no "$dat" \
+plot "$out/lap_threepoint.png" "Three-point problem, phi* = 2 (Hwang et al. 2016, Fig. 1b)" alpha "reality factor" no no "$dat" \
     "u 1:2 w lp t 'PS'" "u 1:3 w lp t 'IPS'" "u 1:4 w l dt 2 t 'Eq. 33b'"
 echo "# data and PNGs in $out"

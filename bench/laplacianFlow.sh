@@ -7,8 +7,8 @@
 # about as many cells (tools/cavityValidate.sh, umppmFoam only), for each n
 # (default 20 40 80). Prints one row per run (RMS and max errors of u on
 # x = 0.5 and v on y = 0.5, cost), then per model the observed order of the
-# RMS errors between successive n: the claim of seed 001 Section 4.4 is that
-# CPM/IPS improve with refinement and PS does not.
+# RMS errors between successive n: the claim of Hwang, Ng & Sheu (2016)
+# Section 4.4 is that CPM/IPS improve with refinement and PS does not.
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 Re=100 endTime=15 maxCo=0.25 mesh=quad variant=UMPPMstar models="CPM IPS PS MPS"

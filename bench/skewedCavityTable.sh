@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # bench/skewedCavityTable.sh [-endTime 10] [-alpha 0.05] [-work DIR] [lc ...]
-# Table 1 of seed 000 (Ng, Sheu & Hwang 2016): CPU time and particle count
+# Table 1 of Ng, Sheu & Hwang (2016): CPU time and particle count
 # at t = endTime of the lid-driven skewed cavity (Re 1000, 15 deg,
 # tutorials/skewedCavity) for UMPPM* and UMPPM (alpha 0.05), maxCo 0.5, for
 # each average cell size lc (default 0.04 0.02 0.01 0.005), plus icoFoam on

@@ -2,16 +2,16 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # bench/taylorGreen.sh [-variant UMPPMstar] [-maxCo 0.25 | -deltaT DT | -cfl C] [-endTime 5]
 #                      [-laplacian CPM] [-icoFoam no] [n ...]
-# The Taylor-Green vortex of Section 4.1 of seed 000 (Re = 100, periodic unit
-# square, crossed triangles of Fig. 7: N_m = 4 n^2) for each n (default
-# 20 40 80: N_m = 1600 6400 25600), CFL maxCo (adjustTimeStep, OpenFOAM's
-# Courant number of the current flow), a fixed deltaT, or -cfl C: the
-# paper's fixed step dt = C l_avg / U with U = 1 and l_avg = sqrt(mean cell
+# The Taylor-Green vortex of Section 4.1 of Ng, Sheu & Hwang (2016) (Re = 100,
+# periodic unit square, crossed triangles of Fig. 7: N_m = 4 n^2) for each n
+# (default 20 40 80: N_m = 1600 6400 25600), CFL maxCo (adjustTimeStep,
+# OpenFOAM's Courant number of the current flow), a fixed deltaT, or -cfl C:
+# the paper's fixed step dt = C l_avg / U with U = 1 and l_avg = sqrt(mean cell
 # area) = 1/(2n), to endTime. Prints per run: N_m, particles, steps, seconds,
-# us per particle-step, peak RSS, and the errors at endTime (tools/
-# taylorGreenError.py): L2rel, decay error vs the sampled max, Eq. 41, Eq. 42;
-# then the observed orders between successive meshes. With -icoFoam yes,
-# icoFoam runs the same case (same mesh and 0/, fixed deltaT = the mean of
+# us per particle-step, peak RSS, and the errors at endTime
+# (tools/taylorGreenError.py): L2rel, decay error vs the sampled max, Eq. 41,
+# Eq. 42; then the observed orders between successive meshes. With -icoFoam
+# yes, icoFoam runs the same case (same mesh and 0/, fixed deltaT = the mean of
 # umppmFoam's steps) and its errors and time are printed below each row.
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)

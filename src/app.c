@@ -175,8 +175,9 @@ static void fill_fields(app *a)
         }
 }
 
-/* writeQuality: the particle fields uN (vector, seed 001 Eq. 13) and tau
- * (symmTensor, Eq. 22) in the mesh's 3-D axes. */
+/* writeQuality: the particle fields uN (vector, Hwang, Ng & Sheu 2016
+ * [HNS16] Eq. 13) and tau (symmTensor, [HNS16] Eq. 22) in the mesh's 3-D
+ * axes. */
 static ump_status write_quality(app *a, const char *dir, const char *tname, ump_err *err)
 {
     const part_set *P = sol_particles(a->S);

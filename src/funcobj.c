@@ -250,7 +250,8 @@ fob_result fob_nusselt_eval(const fob_nusselt *f, const fob_faces *d, double t_r
     r.T1 = f->has_T1 ? f->T1 : sT / A;
     r.T2 = f->has_T2 ? f->T2 : t_ref;
     double dT = r.T1 - r.T2;
-    /* Eq. 43: q = k dT/dn; Eq. 44: h = q / (T1 - T2); Eq. 45: Nu = h S / k */
+    /* Ng, Sheu & Hwang (2016) Eq. 43: q = k dT/dn; Eq. 44: h = q / (T1 - T2);
+     * Eq. 45: Nu = h S / k */
     r.q_avg = f->kappa * sg / A;
     r.h_avg = r.q_avg / dT;
     r.Nu_avg = r.h_avg * f->length / f->kappa;

@@ -2,8 +2,8 @@
  * lsolve.c -- triplet assembly, compressed-column matrices and the direct
  * solvers (UMFPACK, KLU, CHOLMOD) behind lsolve.h.
  *
- * Workload (METHOD.md section 6, Step 9): the PPE matrix depends only on the
- * mesh, so it is analysed and factorized once and then solved once per time
+ * Workload (docs/METHOD.md section 5, Step 9): the PPE matrix depends only on
+ * the mesh, so it is analysed and factorized once and then solved once per time
  * step, for thousands of steps. Everything a solve needs (UMFPACK's wsolve
  * workspace, CHOLMOD's solve2 dense blocks) is allocated at factorization
  * time, so lsolve_solve allocates nothing after its first call.

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
- * lsq.c -- least-squares cell gradient, Eq. (26) of seed 000 (Ng, Sheu &
- * Hwang 2016, Section 3.2.2.1, Fig. 3).
+ * lsq.c -- least-squares cell gradient, Eq. (26) of Ng, Sheu & Hwang (2016)
+ * [NSH16], Section 3.2.2.1, Fig. 3 (docs/METHOD.md section 3.2).
  *
  *   grad phi_P = M_P^-1 sum_j d_j (phi_j - phi_P),  M_P = sum_j d_j d_j^T,
  *   d_j = (x_j + s_j) - x_P over the first neighbours j in N1(P),

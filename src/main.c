@@ -123,7 +123,7 @@ static void print_mesh(const pmesh *pm, const mesh2d *m)
     printf("    face length:      min %.6g  max %.6g\n", s.len_min, s.len_max);
     printf("    non-orthogonality: max %.6g  average %.6g (degrees)\n", s.nonorth_max, s.nonorth_mean);
     printf("    max skewness:     %.6g\n", s.skew_max);
-    printf("\nStencils (cells sharing a vertex; METHOD.md section 3)\n");
+    printf("\nStencils (cells sharing a vertex; docs/METHOD.md section 3.1)\n");
     printf("    first neighbours N1:          min %ld  max %ld  mean %.3g\n",
            (long)s.n1_min, (long)s.n1_max, s.n1_mean);
     printf("    first+second neighbours N2:   min %ld  max %ld  mean %.3g\n\n",

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * mesh2d.c -- the 2-D UMPPM pressure mesh built from a one-cell-thick
- * OpenFOAM polyMesh (METHOD.md section 3; seed 000 Section 3.2.2, Figs. 1-5).
+ * OpenFOAM polyMesh (docs/METHOD.md section 3.1; Ng, Sheu & Hwang 2016
+ * [NSH16] Section 3.2.2, Figs. 1-5).
  *
  * Everything here depends on the mesh only and is computed once (Step 1 and
  * Step 3 of the paper's algorithm). Geometry is exact for planar polygons:

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
- * part_locate.c -- point location on the 2-D pressure mesh (METHOD.md
- * section 4: "point location by walking from the previous cell; fall back
- * to a global search").
+ * part_locate.c -- point location on the 2-D pressure mesh (docs/METHOD.md
+ * section 4: each particle is re-located by walking from its previous cell,
+ * with a search over all cells as the fall-back).
  *
  * Workload: after every particle move (Steps 7 and 10) each particle is
  * re-located from its previous cell; with CFL < 1 the point is in that cell

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * ppe.c -- the pressure Poisson equation of UMPPM on the fixed pressure mesh,
- * Eqs. (18)-(26) of seed 000 (Ng, Sheu & Hwang 2016, Section 3.2.2.1, Fig. 2).
+ * Eqs. (18)-(26) of Ng, Sheu & Hwang (2016) [NSH16], Section 3.2.2.1, Fig. 2
+ * (docs/METHOD.md section 3.3).
  *
  * For every cell P (Eq. 20, kinematic pressure, per unit thickness):
  *   sum_f s_f grad p_f . A_f = (1/dt) sum_f s_f phi_f,

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
- * foamNusselt -- the wall Nusselt number of Eqs. 43-45 (seed 000) from the
- * temperature fields written by any solver (umppmFoam or
+ * foamNusselt -- the wall Nusselt number of Eqs. 43-45 of Ng, Sheu & Hwang
+ * (2016) from the temperature fields written by any solver (umppmFoam or
  * buoyantBoussinesqPimpleFoam), with the same snGrad formula for both:
  * dT/dn = (T_face - T_cell) / (n . (x_face - x_cell)), Nu = dT/dn S / (T1 - T2),
  * area-weighted over the patch.

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
- * laplacianAccuracy -- the accuracy experiments of seed 001 (Hwang, Ng &
- * Sheu 2016, Section 4) for the particle Laplacians of src/laplacian.c, on
+ * laplacianAccuracy -- the accuracy experiments of Hwang, Ng & Sheu (2016)
+ * [HNS16], Section 4, for the particle Laplacians of src/laplacian.c, on
  * irregular 1-, 2- and 3-D point clouds (Eqs. 35, 41, 45):
  *   x = (i - 1) dx + alpha (chi - 0.5) dx,  dx = 1/nC,  chi uniform in [0,1).
  *
@@ -14,7 +14,7 @@
  *       u_N,x dx (Eqs. 37b, 42a, 46a), tauxx: mean IPS effective normal
  *       diffusivity, tauxxdev: RMS of tau_xx - 1, tauxy: RMS of the shear
  *       diffusivity (Eqs. 22-23). The quality numbers do not depend on the
- *       model of the line (seed 001 defines them for PS and IPS).
+ *       model of the line ([HNS16] defines them for PS and IPS).
  *   laplacianAccuracy diffusion [options] [-CD 1] [-endTime 0.02] [-beta 1]
  *                               [-gamma 1] [-samples 10]
  *       The pure diffusion problems (Eqs. 39, 44, 48) on [0,1]^dim with
@@ -321,7 +321,7 @@ static void run_operator(const opts *o)
     double *phi = xcalloc(c.n, sizeof *phi);
     for (size_t p = 0; p < c.n; p++)
         phi[p] = sinprod(&c, p);
-    /* quality of the distribution (seed 001 Eqs. 13, 22): PS and IPS */
+    /* quality of the distribution ([HNS16] Eqs. 13, 22): PS and IPS */
     double sun = 0, stx = 0, stxd = 0, sts = 0;
     {
         int w = window(&c, o->alpha);

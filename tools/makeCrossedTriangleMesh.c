@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * makeCrossedTriangleMesh -- writes constant/polyMesh of a periodic square
  * [0,L]x[0,L] meshed with crossed triangles: n x n squares, each cut into
- * four triangles by its diagonals (Fig. 7 of seed 000; N_m = 4 n^2), one cell
- * thick, cyclic left/right and bottom/top, empty frontAndBack. This is the
- * Taylor-Green mesh of Section 4.1.
+ * four triangles by its diagonals (Fig. 7 of Ng, Sheu & Hwang 2016;
+ * N_m = 4 n^2), one cell thick, cyclic left/right and bottom/top, empty
+ * frontAndBack. This is the Taylor-Green mesh of Section 4.1.
  *
  *   makeCrossedTriangleMesh [-case DIR] -n N [-L 1] [-thickness 0.1]
  */

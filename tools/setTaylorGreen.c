@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * setTaylorGreen -- writes 0/U and 0/p of the Taylor-Green vortex of
- * Section 4.1 of seed 000 (Eqs. 38-40 at t = 0, U = 1, L = 1) on the case's
- * mesh, evaluated at the cell centroids, with cyclic (or empty) patches.
+ * Section 4.1 of Ng, Sheu & Hwang 2016 (Eqs. 38-40 at t = 0, U = 1, L = 1)
+ * on the case's mesh, evaluated at the cell centroids, with cyclic (or
+ * empty) patches.
  *   setTaylorGreen [-case DIR] [-U 1]
  */
 #include "umppm/fieldio.h"

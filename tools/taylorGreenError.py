@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: GPL-3.0-or-later
 # taylorGreenError.py CASE TIME [nu]: Taylor-Green errors (Section 4.1 of
-# seed 000) of a run whose 0/U is the exact field at the centroids (written
-# by setTaylorGreen), so the exact field at time t is U0 exp(b t),
-# b = -8 pi^2 nu (U = L = 1). Prints one line:
+# Ng, Sheu & Hwang 2016) of a run whose 0/U is the exact field at the
+# centroids (written by setTaylorGreen), so the exact field at time t is
+# U0 exp(b t), b = -8 pi^2 nu (U = L = 1). Prints one line:
 #   L2rel    ||U - Uex||_2 / ||Uex||_2 over cells (both components)
 #   Linf_decay  |max|U| / max|U0| - e^{bt}| / e^{bt}: the decay error of the
 #            maximum speed against the maximum the mesh samples at t = 0

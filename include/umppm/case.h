@@ -71,7 +71,8 @@ typedef struct case_solution {
  *           predictorSolver { preconditioner ILU0; tolerance 1e-12; maxIter 500; }
  *           cloudName umppmCloud; }
  * reFactor: r_e / particle spacing of MPS, PS, IPS (0: 2.1 MPS, 2 PS/IPS);
- * writeQuality: also write the particle fields uN and tau (seed 001). 
+ * writeQuality: also write the particle fields uN and tau (Hwang, Ng &
+ * Sheu 2016 [HNS16] Eqs. 13, 22).
  * variant: UMPPM (adaptive) or UMPPMstar (also written "UMPPM*" in quotes). */
 typedef struct case_umppm {
     int variant_star;            /* 1: UMPPM*, 0: UMPPM; default 1 */

@@ -4,7 +4,8 @@
  * writing live here; the numbers come from the solver (sol_wall_dTdn,
  * sol_face_T) through the application.
  *
- * Two types. The wall Nusselt number of Eqs. 43-45 of seed 000:
+ * Two types. The wall Nusselt number of Eqs. 43-45 of Ng, Sheu & Hwang
+ * (2016) [NSH16] (docs/METHOD.md section 6):
  *
  *   functions
  *   {

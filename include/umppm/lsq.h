@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * lsq.h -- least-squares cell gradient on the pressure mesh, Eq. (26) of
- * seed 000 (module prefix lsq_).
+ * Ng, Sheu & Hwang (2016) [NSH16] (module prefix lsq_).
  *
  *   grad phi_P = M_P^{-1} sum_j (x_j - x_P)(phi_j - phi_P),
  *   M_P = sum_j (x_j - x_P)(x_j - x_P)^T,

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
- * mesh2d.h -- the UMPPM pressure mesh (METHOD.md section 3; module prefix mesh_).
+ * mesh2d.h -- the UMPPM pressure mesh (docs/METHOD.md section 3.1; module
+ * prefix mesh_).
  *
  * A 2-D OpenFOAM case is a one-cell-thick 3-D mesh whose flat front and back
  * sides are `empty` patches. mesh_build() makes a 2-D *view* of that polyMesh
@@ -18,9 +19,10 @@
  * then one face per cyclic pair), then boundary faces grouped by patch in
  * polyMesh patch order (empty and cyclic patches contribute none).
  *
- * Stencils (Fig. 1/3/4/5 of the paper): N1(P) = cells sharing a vertex with P
- * (P excluded); N2(P) = cells within two vertex-rings of P (P excluded, N1(P)
- * included, so N2 is the whole search stencil besides P). Across cyclic
+ * Stencils (Figs. 1, 3, 4, 5 of Ng, Sheu & Hwang 2016 [NSH16]):
+ * N1(P) = cells sharing a vertex with P (P excluded); N2(P) = cells within
+ * two vertex-rings of P (P excluded, N1(P) included, so N2 is the whole
+ * search stencil besides P). Across cyclic
  * boundaries vertices are identified, and each stencil entry carries the
  * shift that brings the neighbour next to P (zero without cyclics).
  *

@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * ppe.h -- the pressure Poisson equation on the fixed pressure mesh
- * (module prefix ppe_), Eqs. (20), (22)-(26) of seed 000.
+ * (module prefix ppe_), Eqs. (20), (22)-(26) of Ng, Sheu & Hwang (2016)
+ * [NSH16]; docs/METHOD.md section 3.3.
  *
  * Kinematic pressure p (as icoFoam): sum_f grad p_f . A_f = (1/dt) sum_f u*_f . A_f.
  * Interior (and cyclic) face f between A (owner) and B (neighbour, at x_B - sep):

@@ -28,9 +28,10 @@
 #   5. Bad input ends in one error naming the file: a turbulence model, a
 #      missing Boussinesq constant, an unsupported T condition, a missing
 #      0/T, a function object on a patch that does not exist.
-#   6. The annulus of seed 000 Section 4.4.1 (Ra = 1e5) on the hybrid gmsh
-#      mesh of tutorials/annulusSquareCylinder (460 cells, UMPPM*), t = 30 s,
-#      through that tutorial's Allrun, against OpenFOAM on the same mesh:
+#   6. The annulus of Ng, Sheu & Hwang (2016) Section 4.4.1 (Ra = 1e5) on
+#      the hybrid gmsh mesh of tutorials/annulusSquareCylinder (460 cells,
+#      UMPPM*), t = 30 s, through that tutorial's Allrun, against OpenFOAM
+#      on the same mesh:
 #      pimpleFoam + scalarTransport T + Boussinesq fvOption
 #      (tools/boussinesqReference; the Debian buoyantBoussinesqPimpleFoam
 #      diverges on this mesh, and Allrun must say so and fall back). T

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# test_laplacian_accuracy.sh -- the operator experiments of seed 001
-# (Section 4) with tools/laplacianAccuracy on irregular clouds (alpha = 0.3,
-# Eqs. 35, 41, 45), for the four Laplacians of src/laplacian.c.
+# test_laplacian_accuracy.sh -- the operator experiments of Hwang, Ng &
+# Sheu (2016), Section 4, with tools/laplacianAccuracy on irregular clouds
+# (alpha = 0.3, Eqs. 35, 41, 45), for the four Laplacians of src/laplacian.c.
 # Asserts (measured values in the comments, fixed seed 1):
 #   Laplacian of prod sin(2 pi x_d) on periodic clouds:
 #   nC 16 -> 128 (1-D), 16 -> 64 (2-D, 3-D):

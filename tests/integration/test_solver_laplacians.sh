@@ -7,8 +7,9 @@
 # Asserts, against Ghia et al. (1982) on the centrelines:
 #   - IPS: RMS error of u and v < 0.012, max < 0.03 (CPM's bounds; measured
 #     0.0077 / 0.0058, max 0.024);
-#   - PS: its RMS error of u is over 3 times IPS's (seed 001's claim that
-#     the artificial convection of PS spoils the flow; measured 6.1x);
+#   - PS: its RMS error of u is over 3 times IPS's (the claim of Hwang, Ng &
+#     Sheu 2016 that the artificial convection of PS spoils the flow;
+#     measured 6.1x);
 #   - MPS runs to the end; every model keeps the per-cell continuity error
 #     after correction < 1e-12;
 #   - writeQuality yes: the cloud gets uN (vectorField) and tau

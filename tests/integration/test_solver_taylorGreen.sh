@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # test_solver_taylorGreen.sh -- the UMPPM solver on the Taylor-Green vortex
-# (Section 4.1 of seed 000, Re = 100) on a coarse periodic crossed-triangle
-# mesh (400 cells), t = 0.2, dt = 0.005; then a restart from t = 0.1.
+# (Section 4.1 of Ng, Sheu & Hwang 2016, Re = 100) on a coarse periodic
+# crossed-triangle mesh (400 cells), t = 0.2, dt = 0.005; then a restart from
+# t = 0.1.
 # Asserts, against the exact solution U0 exp(-8 pi^2 nu t):
 #   - L2 relative velocity error < 0.08 (measured 0.051),
 #   - decay error of the maximum speed (Eq. 41, relative to the initial

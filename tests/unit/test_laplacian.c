@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * test_laplacian.c -- particle Laplacians (lap_coeffs): CPM (Eqs. 16-17)
- * and MPS (Eq. 15) of seed 000, PS and IPS of seed 001.
+ * and MPS (Eq. 15) of Ng, Sheu & Hwang (2016) [NSH16], PS and IPS of
+ * Hwang, Ng & Sheu (2016) [HNS16].
  *
  * CPM: exact for quadratics on irregular 24-neighbour clouds, observed order
  * for a smooth field, singular clouds refused, and the implicit row checked
@@ -8,7 +9,7 @@
  * squares for all five derivatives by Gram-Schmidt QR, physical units).
  * MPS: exact for quadratics on a regular lattice with r_e = 2.1 l0, and
  * inconsistent on an irregular cloud: its error does not vanish as h -> 0.
- * PS and IPS (seed 001): the 1-D closed forms (Eqs. 30, 32, 33) to
+ * PS and IPS ([HNS16]): the 1-D closed forms (Eqs. 30, 32, 33) to
  * round-off, IPS exact for linear and CPM for quadratic fields in 1-3 D,
  * PS's artificial velocity growing as 1/l0, the quality indicators against
  * Eqs. 13 and 22 written out, degenerate 3-D clouds refused.
@@ -347,7 +348,7 @@ static void test_mps_params(void **state)
     assert_true(a[0] == 0 && isfinite(a[1]) && a[1] > 0);
 }
 
-/* ---- seed 001: PS, IPS, and the d-dimensional operators ----------------- */
+/* ---- [HNS16]: PS, IPS, and the d-dimensional operators ------------------ */
 
 static const lap_params PS = {LAP_PS, 2.0};
 static const lap_params IPS = {LAP_IPS, 2.0};
@@ -378,7 +379,7 @@ static int cloud_d(int dim, double l0, double jit, double *off[3])
     return n;
 }
 
-/* Seed 001 Eqs. 30a, 30b: PS and IPS of phi = a x + b x^2 on an irregular
+/* [HNS16] Eqs. 30a, 30b: PS and IPS of phi = a x + b x^2 on an irregular
  * 1-D cloud, against the closed forms written with the Omega sums (Eq. 25b)
  * computed here independently. */
 static void test_ps_ips_1d_closed_forms(void **state)
@@ -424,7 +425,7 @@ static void test_ps_ips_1d_closed_forms(void **state)
     print_message("Eqs. 30a/30b on 200 irregular 1-D clouds: worst rel. difference %.3g\n", worst);
 }
 
-/* Seed 001 Eqs. 31-33: the three-point problem, PS and IPS at x = 0 with
+/* [HNS16] Eqs. 31-33: the three-point problem, PS and IPS at x = 0 with
  * neighbours at 1 and -1 + alpha (r_e = 2), against Eqs. 32a, 32b and the
  * reality factor of IPS, Eq. 33b (exact in alpha, not only to O(alpha^3)). */
 static void test_three_point(void **state)
@@ -548,7 +549,7 @@ static void test_consistency_by_dimension(void **state)
     }
 }
 
-/* The quality indicators against the sums of seed 001 written out:
+/* The quality indicators against the sums of [HNS16] written out:
  * u_N = 4 Omega_2^(1,0) / Omega_0^(0,0) (Eq. 13) and tau of Eqs. 22a-c;
  * on a regular lattice u_N = 0, tau = I and PS = IPS. */
 static void test_quality_closed_forms(void **state)
