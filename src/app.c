@@ -94,6 +94,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
                  : strcmp(a->um.pred_pc, "none") == 0 ? LSOLVE_PC_NONE : LSOLVE_PC_ILU0;
     s->pred_tol = a->um.pred_tol;
     s->pred_maxit = (int)a->um.pred_maxit;
+    s->sort_interval = (int)a->um.sort_interval;
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
     s->p_ref_value = a->so.p_ref_value;
     if (a->bu.on) {
@@ -582,8 +583,9 @@ ump_status app_run(const char *case_dir, ump_err *err)
     if (strcmp(a.um.laplacian, "CPM") != 0)
         printf(" (r_e = %g x spacing)", lap_re_factor(&(lap_params){(lap_model)lap_parse(a.um.laplacian),
                                                                    a.um.re_factor}));
-    printf(", PPE solver %s, predictor BiCGSTAB/%s tolerance %g\n\n", a.um.ppe_solver, a.um.pred_pc,
+    printf(", PPE solver %s, predictor BiCGSTAB/%s tolerance %g\n", a.um.ppe_solver, a.um.pred_pc,
            a.um.pred_tol);
+    printf("Threads: %d (OpenMP; set OMP_NUM_THREADS to change)\n\n", sol_threads());
     double tb = wall_seconds();
     if (a.bu.on)
         printf("Boussinesq buoyancy: beta %g, TRef %g, Pr %g (thermal diffusivity nu/Pr = %g); "
@@ -603,6 +605,7 @@ ump_status app_run(const char *case_dir, ump_err *err)
     }
     printf("\nStarting time loop\n\n");
     long step = 0;
+    double stage_cpu[SOL_NSTAGES] = {0}, stage_wall[SOL_NSTAGES] = {0};
     if ((rc = fo_setup(&a, err)) != UMP_OK || (rc = run_functions(&a, &t, 0, tname, err)) != UMP_OK)
         goto done;
     while (rt_running(&t)) {
@@ -620,6 +623,10 @@ ump_status app_run(const char *case_dir, ump_err *err)
         sol_stats st;
         if ((rc = sol_step(a.S, t.delta_t, &st, err)) != UMP_OK)
             goto done;
+        for (int k = 0; k < SOL_NSTAGES; k++) {
+            stage_cpu[k] += st.stage_cpu[k];
+            stage_wall[k] += st.stage_wall[k];
+        }
         printf("Particles: %zu (added %zu, deleted %zu, left the domain %zu)\n", st.np, st.added,
                st.deleted, st.left);
         for (int k = 0; k < (a.bu.on ? 3 : 2); k++)
@@ -646,6 +653,20 @@ ump_status app_run(const char *case_dir, ump_err *err)
         }
         printf("ExecutionTime = %.4g s  ClockTime = %.0f s\n\n",
                (double)(clock() - cpu0) / CLOCKS_PER_SEC, wall_seconds() - wall0);
+    }
+    if (step > 0) {
+        /* where the time went, per stage of the step (CPU of all threads) */
+        double tc = 0, tw = 0;
+        for (int k = 0; k < SOL_NSTAGES; k++) {
+            tc += stage_cpu[k];
+            tw += stage_wall[k];
+        }
+        printf("Time by stage over %ld steps, %d threads (CPU s, wall s, share of wall):\n", step,
+               sol_threads());
+        for (int k = 0; k < SOL_NSTAGES; k++)
+            printf("    %-34s %9.3f %9.3f %5.1f %%\n", sol_stage_name(k), stage_cpu[k], stage_wall[k],
+                   tw > 0 ? 100 * stage_wall[k] / tw : 0.0);
+        printf("    %-34s %9.3f %9.3f\n\n", "total", tc, tw);
     }
     rc = UMP_OK;
 done:

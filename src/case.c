@@ -14,6 +14,8 @@
 #include <dirent.h>
 #include <float.h>
 #include <math.h>
+#include <stdarg.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -400,68 +402,389 @@ ump_status case_start_dir(const char *case_dir, const case_control *c, char *nam
     return rc;
 }
 
-/* Copy a word entry of d into buf after checking it against a list. */
-static ump_status get_choice(const foam_dict *d, const char *key, const char *dflt,
-                             const char *const *valid, int nvalid, char *buf, size_t len, ump_err *err)
+/* ---- the UMPPM sub-dictionary of system/fvSolution ------------------------ */
+
+static const char *const variant_words[] = {"UMPPM", "UMPPMstar", "UMPPM*", NULL};
+static const int variant_values[] = {0, 1, 1};
+static const char *const laplacian_words[] = {"CPM", "MPS", "IPS", "PS", NULL};
+static const char *const ppe_words[] = {"auto", "UMFPACK", "KLU", "CHOLMOD", NULL};
+static const char *const pc_words[] = {"ILU0", "Jacobi", "none", NULL};
+
+#define UM_FIELD(f) offsetof(case_umppm, f), sizeof(((case_umppm *)0)->f)
+#define UM_NORANGE {0, 0, 0, 0, 0, 0, 0}
+/* has_lo, has_hi, lo_open, hi_open, lo, hi, or_zero */
+#define UM_OPEN01 {1, 1, 1, 1, 0, 1, 0}
+#define UM_ZERO_OR_1TO4 {1, 1, 0, 0, 1, 4, 1}
+#define UM_GT(x) {1, 0, 1, 0, (x), 0, 0}
+#define UM_GE(x) {1, 0, 0, 0, (x), 0, 0}
+
+static const case_option umppm_options[] = {
+    {"variant", CASE_OPT_CHOICE, "UMPPMstar", 1, variant_words, variant_values, UM_NORANGE,
+     "UMPPM (adaptive, alpha) or UMPPMstar (one particle per cell; or \"UMPPM*\")",
+     UM_FIELD(variant_star)},
+    {"alpha", CASE_OPT_SCALAR, "0.09", 0.09, NULL, NULL, UM_OPEN01,
+     "UMPPM: delete one of two particles closer than sqrt(alpha) d_c",
+     UM_FIELD(alpha)},
+    {"laplacian", CASE_OPT_CHOICE, "CPM", 0, laplacian_words, NULL, UM_NORANGE,
+     "particle Laplacian of the implicit viscous predictor", UM_FIELD(laplacian)},
+    {"reFactor", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_ZERO_OR_1TO4,
+     "r_e / particle spacing of IPS, PS, MPS; 0: the model's (2; MPS 2.1)",
+     UM_FIELD(re_factor)},
+    {"writeQuality", CASE_OPT_BOOL, "no", 0, NULL, NULL, UM_NORANGE,
+     "also write the particle fields uN and tau into the cloud", UM_FIELD(write_quality)},
+    {"ppeSolver", CASE_OPT_CHOICE, "auto", 0, ppe_words, NULL, UM_NORANGE,
+     "direct pressure solver; auto: CHOLMOD if symmetric, else UMFPACK",
+     UM_FIELD(ppe_solver)},
+    {"predictorSolver.preconditioner", CASE_OPT_CHOICE, "Jacobi", 0, pc_words, NULL, UM_NORANGE,
+     "preconditioner of the BiCGSTAB predictor", UM_FIELD(pred_pc)},
+    {"predictorSolver.tolerance", CASE_OPT_SCALAR, "1e-12", 1e-12, NULL, NULL, UM_GT(0),
+     "relative tolerance of the BiCGSTAB predictor", UM_FIELD(pred_tol)},
+    {"predictorSolver.maxIter", CASE_OPT_LABEL, "500", 500, NULL, NULL, UM_GE(1),
+     "iteration limit of the BiCGSTAB predictor", UM_FIELD(pred_maxit)},
+    {"cloudName", CASE_OPT_WORD, "umppmCloud", 0, NULL, NULL, UM_NORANGE,
+     "name of the particle cloud under <time>/lagrangian/", UM_FIELD(cloud_name)},
+    {"sortInterval", CASE_OPT_LABEL, "1", 1, NULL, NULL, UM_GE(0),
+     "re-sort the particles by cell every N steps; 0: never", UM_FIELD(sort_interval)},
+};
+
+#define UM_NOPT (sizeof umppm_options / sizeof umppm_options[0])
+
+const case_option *case_umppm_options(size_t *n)
 {
-    const char *w = NULL;
-    UMP_CALL(foam_get_word_or(d, key, dflt, &w, err));
-    for (int i = 0; i < nvalid; i++)
-        if (strcmp(valid[i], w) == 0) {
-            snprintf(buf, len, "%s", w);
-            return UMP_OK;
-        }
-    const foam_entry *e = foam_dict_find(d, key, 0);
-    char list[256] = "";
-    for (int i = 0; i < nvalid; i++) {
-        strncat(list, i ? " " : "", sizeof list - strlen(list) - 1);
-        strncat(list, valid[i], sizeof list - strlen(list) - 1);
+    if (n)
+        *n = UM_NOPT;
+    return umppm_options;
+}
+
+/* Append to buf (always NUL-terminated, truncating). */
+static void cat(char *buf, size_t len, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+static void cat(char *buf, size_t len, const char *fmt, ...)
+{
+    size_t o = strlen(buf);
+    if (o + 1 >= len)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf + o, len - o, fmt, ap);
+    va_end(ap);
+}
+
+const char *case_option_allowed(const case_option *o, char *buf, size_t len)
+{
+    if (!buf || len == 0)
+        return buf;
+    buf[0] = '\0';
+    const case_opt_range *r = &o->range;
+    switch (o->type) {
+    case CASE_OPT_CHOICE:
+        for (size_t i = 0; o->choices && o->choices[i]; i++)
+            cat(buf, len, "%s%s", i ? " " : "", o->choices[i]);
+        break;
+    case CASE_OPT_BOOL:
+        cat(buf, len, "yes/no");
+        break;
+    case CASE_OPT_WORD:
+        cat(buf, len, "word");
+        break;
+    case CASE_OPT_SCALAR:
+    case CASE_OPT_LABEL:
+        if (r->or_zero)
+            cat(buf, len, "0 or ");
+        if (r->has_lo && r->has_hi)
+            cat(buf, len, "%c%.15g, %.15g%c", r->lo_open ? '(' : '[', r->lo, r->hi, r->hi_open ? ')' : ']');
+        else if (r->has_lo)
+            cat(buf, len, "%s %.15g", r->lo_open ? ">" : ">=", r->lo);
+        else if (r->has_hi)
+            cat(buf, len, "%s %.15g", r->hi_open ? "<" : "<=", r->hi);
+        else
+            cat(buf, len, o->type == CASE_OPT_LABEL ? "integer" : "number");
+        break;
     }
-    return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM %s '%s' is not one of: %s",
-                    e ? e->file : "system/fvSolution", e ? e->line : 0, key, w, list);
+    return buf;
+}
+
+static int in_range(const case_opt_range *r, double v)
+{
+    if (isnan(v))
+        return 0;
+    if (r->or_zero && v == 0)
+        return 1;
+    if (r->has_lo && !(r->lo_open ? v > r->lo : v >= r->lo))
+        return 0;
+    if (r->has_hi && !(r->hi_open ? v < r->hi : v <= r->hi))
+        return 0;
+    return 1;
+}
+
+/* Store the value of o into its field of u: v (scalar), l (label, bool),
+ * choices[choice] or its value (choice), w (word). */
+static void store(const case_option *o, case_umppm *u, double v, long l, int choice, const char *w)
+{
+    char *p = (char *)u + o->offset;
+    switch (o->type) {
+    case CASE_OPT_CHOICE:
+        if (o->choice_values)
+            *(int *)(void *)p = o->choice_values[choice];
+        else
+            snprintf(p, o->size, "%s", o->choices[choice]);
+        break;
+    case CASE_OPT_SCALAR:
+        *(double *)(void *)p = v;
+        break;
+    case CASE_OPT_LABEL:
+        *(long *)(void *)p = l;
+        break;
+    case CASE_OPT_BOOL:
+        *(int *)(void *)p = l != 0;
+        break;
+    case CASE_OPT_WORD:
+        snprintf(p, o->size, "%s", w);
+        break;
+    }
+}
+
+static int choice_index(const case_option *o, const char *w)
+{
+    for (int i = 0; o->choices[i]; i++)
+        if (strcmp(o->choices[i], w) == 0)
+            return i;
+    return -1;
+}
+
+void case_umppm_defaults(case_umppm *u)
+{
+    memset(u, 0, sizeof *u);
+    for (size_t i = 0; i < UM_NOPT; i++) {
+        const case_option *o = &umppm_options[i];
+        int c = o->type == CASE_OPT_CHOICE ? choice_index(o, o->default_text) : 0;
+        store(o, u, o->default_value, (long)o->default_value, c < 0 ? 0 : c, o->default_text);
+    }
+}
+
+/* Length of the first component of key (up to '.' or the end). */
+static size_t comp_len(const char *key)
+{
+    const char *dot = strchr(key, '.');
+    return dot ? (size_t)(dot - key) : strlen(key);
+}
+
+/* "UMPPM" or "UMPPM predictorSolver" for a dictionary at prefix "" or
+ * "predictorSolver." */
+static void dict_label(const char *prefix, char *buf, size_t len)
+{
+    size_t n = strlen(prefix);
+    snprintf(buf, len, "UMPPM%s%.*s", n ? " " : "", n ? (int)(n - 1) : 0, prefix);
+}
+
+/* Refuse entries of d (the dictionary at prefix) that no option reads, and
+ * a non-dictionary where the table has a sub-dictionary. */
+static ump_status check_keys(const foam_dict *d, const char *prefix, ump_err *err)
+{
+    size_t np = strlen(prefix);
+    for (size_t i = 0; i < d->n; i++) {
+        const foam_entry *e = &d->e[i];
+        int known = 0;
+        for (size_t k = 0; k < UM_NOPT; k++) {
+            const char *key = umppm_options[k].key;
+            if (strncmp(key, prefix, np) != 0)
+                continue;
+            const char *rest = key + np;
+            char comp[64];
+            snprintf(comp, sizeof comp, "%.*s", (int)comp_len(rest), rest);
+            if (strcmp(e->key, comp) != 0 && !(e->is_pattern && foam_dict_find(d, comp, 0) == e))
+                continue;
+            known = 1;
+            if (rest[strlen(comp)] != '.')
+                continue;
+            /* a sub-dictionary of the table */
+            char sub[128], where[128];
+            snprintf(sub, sizeof sub, "%s%s.", prefix, comp);
+            if (!e->dict) {
+                char t[128];
+                dict_label(sub, where, sizeof where);
+                if (e->ntok)
+                    foam_tok_str(&e->tok[0], t, sizeof t);
+                else
+                    snprintf(t, sizeof t, "nothing");
+                return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s must be a dictionary { ... }, found %s%s",
+                                e->file, e->line, where, t, e->ntok > 1 ? " ..." : "");
+            }
+            UMP_CALL(check_keys(e->dict, sub, err));
+            break;
+        }
+        if (known)
+            continue;
+        char names[512] = "", where[128];
+        for (size_t k = 0; k < UM_NOPT; k++) {
+            const char *key = umppm_options[k].key;
+            if (strncmp(key, prefix, np) != 0)
+                continue;
+            size_t cl = comp_len(key + np);
+            int seen = 0;
+            for (size_t j = 0; j < k && !seen; j++)
+                seen = strncmp(umppm_options[j].key, prefix, np) == 0 &&
+                       comp_len(umppm_options[j].key + np) == cl &&
+                       strncmp(umppm_options[j].key + np, key + np, cl) == 0;
+            if (!seen)
+                cat(names, sizeof names, "%s%.*s", names[0] ? " " : "", (int)cl, key + np);
+        }
+        dict_label(prefix, where, sizeof where);
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s: unknown key '%s'; known keys: %s", e->file, e->line,
+                        where, e->key, names);
+    }
+    return UMP_OK;
+}
+
+/* What a value of type t must look like, for messages. */
+static const char *type_text(case_opt_type t)
+{
+    switch (t) {
+    case CASE_OPT_SCALAR:
+        return "a number";
+    case CASE_OPT_LABEL:
+        return "an integer";
+    case CASE_OPT_BOOL:
+        return "a switch (yes/no, on/off, true/false, 1/0)";
+    case CASE_OPT_CHOICE:
+    case CASE_OPT_WORD:
+        break;
+    }
+    return "one word";
+}
+
+/* Read option o from the UMPPM dictionary d (NULL: absent) into u, which
+ * holds the defaults. */
+static ump_status read_option(const foam_dict *d, const case_option *o, case_umppm *u, ump_err *err)
+{
+    /* walk the sub-dictionaries of the key's path (check_keys made sure
+     * they are dictionaries) */
+    const char *leaf = o->key;
+    while (d && strchr(leaf, '.')) {
+        char comp[64];
+        snprintf(comp, sizeof comp, "%.*s", (int)comp_len(leaf), leaf);
+        d = foam_dict_sub(d, comp);
+        leaf += strlen(comp) + 1;
+    }
+    const foam_entry *e = d ? foam_dict_find(d, leaf, 0) : NULL;
+    if (!e)
+        return UMP_OK; /* u holds the defaults */
+    char allowed[256];
+    case_option_allowed(o, allowed, sizeof allowed);
+    double v = 0;
+    int64_t l = 0;
+    int b = 0;
+    const char *w = NULL;
+    ump_err ignored;
+    ump_status rc = UMP_OK;
+    switch (o->type) {
+    case CASE_OPT_SCALAR:
+        rc = foam_get_scalar_or(d, leaf, 0, &v, &ignored);
+        break;
+    case CASE_OPT_LABEL:
+        rc = foam_get_label_or(d, leaf, 0, &l, &ignored);
+        v = (double)l;
+        break;
+    case CASE_OPT_BOOL:
+        rc = foam_get_bool_or(d, leaf, 0, &b, &ignored);
+        break;
+    case CASE_OPT_CHOICE:
+    case CASE_OPT_WORD:
+        rc = foam_get_word_or(d, leaf, NULL, &w, &ignored);
+        break;
+    }
+    if (rc != UMP_OK) {
+        char t[128];
+        if (e->dict)
+            snprintf(t, sizeof t, "a dictionary");
+        else if (e->ntok == 0)
+            snprintf(t, sizeof t, "nothing");
+        else
+            foam_tok_str(&e->tok[0], t, sizeof t);
+        int with_allowed = o->type != CASE_OPT_BOOL && o->type != CASE_OPT_WORD;
+        return UMP_FAIL(err, rc, "%s:%d: UMPPM %s: expected %s, found %s%s%s%s", e->file, e->line, o->key,
+                        type_text(o->type), t, e->ntok > 1 ? " ..." : "", with_allowed ? "; allowed " : "",
+                        with_allowed ? allowed : "");
+    }
+    switch (o->type) {
+    case CASE_OPT_CHOICE: {
+        int c = choice_index(o, w);
+        if (c < 0)
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM %s '%s' is not one of: %s", e->file, e->line,
+                            o->key, w, allowed);
+        store(o, u, 0, 0, c, NULL);
+        break;
+    }
+    case CASE_OPT_WORD:
+        if (strlen(w) >= o->size)
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM %s '%.40s...' is too long: at most %zu characters",
+                            e->file, e->line, o->key, w, o->size - 1);
+        store(o, u, 0, 0, 0, w);
+        break;
+    case CASE_OPT_BOOL:
+        store(o, u, 0, b, 0, NULL);
+        break;
+    case CASE_OPT_SCALAR:
+    case CASE_OPT_LABEL:
+        if (!in_range(&o->range, v)) {
+            if (o->type == CASE_OPT_LABEL)
+                return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM %s %lld is out of range: allowed %s", e->file,
+                                e->line, o->key, (long long)l, allowed);
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM %s %.15g is out of range: allowed %s", e->file,
+                            e->line, o->key, v, allowed);
+        }
+        store(o, u, v, (long)l, 0, NULL); /* labels: int64 = long (LP64) */
+        break;
+    }
+    return UMP_OK;
+}
+
+size_t case_umppm_help(char *buf, size_t len)
+{
+    char text[8192] = ""; /* the whole text (about 2 kB) */
+    cat(text, sizeof text,
+        "UMPPM dictionary (system/fvSolution)\n"
+        "  All keys are optional; unknown keys are refused. predictorSolver.KEY is KEY\n"
+        "  in the sub-dictionary UMPPM { predictorSolver { KEY value; } }.\n\n"
+        "  %-32s %-11s %s\n", "key", "default", "allowed");
+    for (size_t i = 0; i < UM_NOPT; i++) {
+        const case_option *o = &umppm_options[i];
+        char allowed[256];
+        case_option_allowed(o, allowed, sizeof allowed);
+        cat(text, sizeof text, "  %-32s %-11s %s\n      %s\n", o->key, o->default_text, allowed, o->help);
+    }
+    size_t n = strlen(text);
+    if (buf && len > 0)
+        snprintf(buf, len, "%s", text);
+    return n;
 }
 
 ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err)
 {
-    static const char *const variants[] = {"UMPPM", "UMPPMstar", "UMPPM*"};
-    static const char *const laps[] = {"CPM", "MPS", "IPS", "PS"};
-    static const char *const ppes[] = {"auto", "UMFPACK", "KLU", "CHOLMOD"};
-    static const char *const pcs[] = {"ILU0", "Jacobi", "none"};
-    char path[4096], var[16];
+    char path[4096];
     snprintf(path, sizeof path, "%s/system/fvSolution", case_dir);
     foam_file *f = NULL;
     UMP_CALL(foam_file_read(path, &f, err));
-    const foam_dict *d = foam_dict_sub(f->dict, "UMPPM");
-    static const foam_dict empty = {0};
-    if (!d)
-        d = &empty;
-    const foam_dict *pd = foam_dict_sub(d, "predictorSolver");
-    if (!pd)
-        pd = &empty;
-    int64_t maxit = 500;
-    const char *cloud = NULL;
-    ump_status rc;
-    if ((rc = get_choice(d, "variant", "UMPPMstar", variants, 3, var, sizeof var, err)) != UMP_OK ||
-        (rc = foam_get_scalar_or(d, "alpha", 0.09, &u->alpha, err)) != UMP_OK ||
-        (rc = get_choice(d, "laplacian", "CPM", laps, 4, u->laplacian, sizeof u->laplacian, err)) != UMP_OK ||
-        (rc = foam_get_scalar_or(d, "reFactor", 0, &u->re_factor, err)) != UMP_OK ||
-        (rc = foam_get_bool_or(d, "writeQuality", 0, &u->write_quality, err)) != UMP_OK ||
-        (rc = get_choice(d, "ppeSolver", "auto", ppes, 4, u->ppe_solver, sizeof u->ppe_solver, err)) != UMP_OK ||
-        (rc = get_choice(pd, "preconditioner", "ILU0", pcs, 3, u->pred_pc, sizeof u->pred_pc, err)) != UMP_OK ||
-        (rc = foam_get_scalar_or(pd, "tolerance", 1e-12, &u->pred_tol, err)) != UMP_OK ||
-        (rc = foam_get_label_or(pd, "maxIter", 500, &maxit, err)) != UMP_OK ||
-        (rc = foam_get_word_or(d, "cloudName", "umppmCloud", &cloud, err)) != UMP_OK)
-        goto done;
-    u->variant_star = strcmp(var, "UMPPM") != 0;
-    u->pred_maxit = (long)maxit;
-    snprintf(u->cloud_name, sizeof u->cloud_name, "%s", cloud);
-    if (!(u->alpha > 0 && u->alpha < 1) || !(u->pred_tol > 0) || maxit < 1)
-        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: UMPPM alpha must be in (0,1), predictorSolver tolerance > 0 "
-                      "and maxIter >= 1", f->path);
-    else if (u->re_factor != 0 && !(u->re_factor >= 1 && u->re_factor <= 4))
-        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: UMPPM reFactor %g: expected 0 (the model's default) or a "
-                      "value in [1, 4] (r_e = reFactor x particle spacing)", f->path, u->re_factor);
-done:
+    case_umppm_defaults(u);
+    ump_status rc = UMP_OK;
+    const foam_entry *top = foam_dict_find(f->dict, "UMPPM", 0);
+    const foam_dict *d = top ? top->dict : NULL;
+    if (top && !d) {
+        char t[128];
+        if (top->ntok)
+            foam_tok_str(&top->tok[0], t, sizeof t);
+        else
+            snprintf(t, sizeof t, "nothing");
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM must be a dictionary { ... }, found %s%s", top->file,
+                      top->line, t, top->ntok > 1 ? " ..." : "");
+    }
+    if (rc == UMP_OK && d)
+        rc = check_keys(d, "", err);
+    for (size_t i = 0; i < UM_NOPT && rc == UMP_OK; i++)
+        rc = read_option(d, &umppm_options[i], u, err);
     foam_file_free(&f);
     return rc;
 }

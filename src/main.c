@@ -4,6 +4,9 @@
  *
  *   umppmFoam [-case DIR] [-checkMesh [-writeFields]] [-help] [-version]
  *
+ * -help also lists the keys of the UMPPM dictionary of system/fvSolution
+ * (case_umppm_help: key, default, allowed values, help; the reader's table).
+ *
  * -checkMesh reads the case (controlDict, polyMesh), builds the 2-D UMPPM
  * pressure mesh and prints its statistics. With -writeFields it also reads
  * the start-time fields U and p and writes them back into the start time
@@ -47,9 +50,23 @@ static void usage(FILE *fp)
             "                    controlDict write format and write C and V (cell centres and\n"
             "                    volumes) into the start time directory\n"
             "  -version          Print the version and exit\n"
-            "  -help             Print this usage and exit\n"
+            "  -help             Print this usage and the UMPPM options, then exit\n"
             "\nUnstructured Moving Particle Pressure Mesh (UMPPM) solver for 2-D\n"
             "incompressible flow (Ng, Sheu & Hwang 2016), for OpenFOAM case directories.\n\n");
+}
+
+/* -help: the usage, then the UMPPM dictionary's options from case.c's table. */
+static void help(FILE *fp)
+{
+    usage(fp);
+    size_t n = case_umppm_help(NULL, 0);
+    char *text = malloc(n + 1);
+    if (text) {
+        case_umppm_help(text, n + 1);
+        fputs(text, fp);
+        fputs("\n", fp);
+    }
+    free(text);
 }
 
 static void banner(int argc, char **argv, const char *case_dir)
@@ -263,7 +280,7 @@ int main(int argc, char **argv)
         } else if (strcmp(a, "-writeFields") == 0) {
             o.write_fields = 1;
         } else if (strcmp(a, "-help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
+            help(stdout);
             return 0;
         } else if (strcmp(a, "-version") == 0) {
             printf("umppmFoam %s (reads OpenFOAM v1912 cases)\n", UMPPM_VERSION);

@@ -68,8 +68,11 @@ typedef struct case_solution {
 /* The UMPPM sub-dictionary of system/fvSolution (all optional):
  *   UMPPM { variant UMPPMstar; alpha 0.09; laplacian CPM; reFactor 0;
  *           writeQuality no; ppeSolver auto;
- *           predictorSolver { preconditioner ILU0; tolerance 1e-12; maxIter 500; }
- *           cloudName umppmCloud; }
+ *           predictorSolver { preconditioner Jacobi; tolerance 1e-12; maxIter 500; }
+ *           cloudName umppmCloud; sortInterval 1; }
+ * Its keys, types, defaults, allowed values and help are ONE table,
+ * case_umppm_options(): the reader, case_umppm_defaults() and
+ * case_umppm_help() (umppmFoam -help) all use it.
  * reFactor: r_e / particle spacing of MPS, PS, IPS (0: 2.1 MPS, 2 PS/IPS);
  * writeQuality: also write the particle fields uN and tau (Hwang, Ng &
  * Sheu 2016 [HNS16] Eqs. 13, 22).
@@ -81,12 +84,69 @@ typedef struct case_umppm {
     double re_factor;            /* default 0: the model's own */
     int write_quality;           /* default 0 */
     char ppe_solver[16];         /* auto (default), UMFPACK, KLU, CHOLMOD */
-    char pred_pc[16];            /* ILU0 (default), Jacobi, none */
+    char pred_pc[16];            /* Jacobi (default), ILU0, none */
     double pred_tol;             /* default 1e-12 */
     long pred_maxit;             /* default 500 */
     char cloud_name[64];         /* default umppmCloud */
+    long sort_interval;          /* sortInterval: re-sort the particles by cell
+                                    every N steps, 0 never; default 1 */
 } case_umppm;
 
+/* Type of an option of the UMPPM dictionary, and of the case_umppm field
+ * it is stored in. */
+typedef enum case_opt_type {
+    CASE_OPT_CHOICE, /* one word of choices[]: char[size], or int (choice_values[i]) */
+    CASE_OPT_SCALAR, /* a number: double */
+    CASE_OPT_LABEL,  /* an integer: long */
+    CASE_OPT_BOOL,   /* a switch (yes/no, on/off, true/false, 1/0): int 0/1 */
+    CASE_OPT_WORD    /* any one word or "string": char[size] (longer is refused) */
+} case_opt_type;
+
+/* Allowed numbers of a scalar or label option: [lo, hi] with each end
+ * closed, open or absent, and optionally the single value 0 besides. */
+typedef struct case_opt_range {
+    int has_lo, has_hi;          /* 0: no bound on that side */
+    int lo_open, hi_open;        /* 1: the bound itself is excluded */
+    double lo, hi;
+    int or_zero;                 /* 0 is allowed besides the range */
+} case_opt_range;
+
+typedef struct case_option {
+    const char *key;             /* "alpha"; in a sub-dictionary with its path,
+                                    "predictorSolver.tolerance" */
+    case_opt_type type;
+    const char *default_text;    /* as written in fvSolution: "0.09", "UMPPMstar", "no" */
+    double default_value;        /* scalar, label, bool (0/1); choice with
+                                    choice_values: its int value; else 0 */
+    const char *const *choices;  /* CASE_OPT_CHOICE: NULL-terminated words, else NULL */
+    const int *choice_values;    /* NULL: the word itself is stored */
+    case_opt_range range;        /* CASE_OPT_SCALAR / CASE_OPT_LABEL */
+    const char *help;            /* one line */
+    size_t offset, size;         /* the field in case_umppm */
+} case_option;
+
+/* The options table (static storage); *n gets its length. */
+const case_option *case_umppm_options(size_t *n);
+/* What o allows, as in messages and -help: "UMPPM UMPPMstar UMPPM*",
+ * "(0, 1)", "0 or [1, 4]", "> 0", ">= 1", "yes/no", "word". Returns buf. */
+const char *case_option_allowed(const case_option *o, char *buf, size_t len);
+/* Every field of u set to its default from the table. */
+void case_umppm_defaults(case_umppm *u);
+/* The table as text for umppmFoam -help, under the heading "UMPPM dictionary
+ * (system/fvSolution)": key, default, allowed, then the help line. Writes at
+ * most len bytes (NUL included) into buf as snprintf, returns the full
+ * length (call with NULL, 0 to size the buffer). */
+size_t case_umppm_help(char *buf, size_t len);
+
+/* Read the UMPPM sub-dictionary of <case>/system/fvSolution (absent: all
+ * defaults). Each key is read with its type and checked against its allowed
+ * values; an error names file, line, key, value and what is allowed:
+ *   system/fvSolution:12: UMPPM variant 'foo' is not one of: UMPPM UMPPMstar UMPPM*
+ *   system/fvSolution:13: UMPPM alpha 1.5 is out of range: allowed (0, 1)
+ * Keys not in the table are refused, as is a non-dictionary UMPPM or
+ * predictorSolver:
+ *   system/fvSolution:14: UMPPM: unknown key 'alpah'; known keys: variant alpha ...
+ *   system/fvSolution:2: UMPPM must be a dictionary { ... }, found label 3 */
 ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err);
 
 /* Read <case>/system/controlDict. Missing required keys (deltaT, endTime,

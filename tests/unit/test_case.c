@@ -1,12 +1,17 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * test_case.c -- controlDict / transportProperties / fvSolution reading,
- * time directory discovery, and field reading with OpenFOAM's boundary
- * matching rules (name, then group, then regex).
+ * time directory discovery, field reading with OpenFOAM's boundary
+ * matching rules (name, then group, then regex), and the UMPPM dictionary
+ * of fvSolution: its options table, defaults, errors, -help text and the
+ * README's Settings table.
  */
 #include "testutil.h"
 #include "umppm/case.h"
 #include "umppm/fieldio.h"
+#include "umppm/laplacian.h"
+#include "umppm/lsolve.h"
 #include "umppm/polymesh.h"
+#include "umppm/solver.h"
 
 #include <sys/stat.h>
 
@@ -256,6 +261,453 @@ static void test_field_matching(void **state)
     tu_rmtree(d);
 }
 
+/* ---- UMPPM { } of system/fvSolution ------------------------------------------ */
+
+static const case_option *opt(const char *key)
+{
+    size_t n;
+    const case_option *t = case_umppm_options(&n);
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(t[i].key, key) == 0)
+            return &t[i];
+    fail_msg("no option %s", key);
+    return NULL;
+}
+
+/* system/fvSolution with HDR on line 1 and "UMPPM {" on lines 2-3, then
+ * body (so that its first line is line 4). */
+static void write_umppm(const char *d, const char *body)
+{
+    char text[8192];
+    snprintf(text, sizeof text, "%sUMPPM\n{\n%s}\n", HDR, body);
+    tu_write(d, "system/fvSolution", text);
+}
+
+/* One option set to value; returns the line of the entry. */
+static int write_one(const char *d, const char *key, const char *value)
+{
+    char body[1024];
+    const char *dot = strchr(key, '.');
+    if (dot) {
+        snprintf(body, sizeof body, "    %.*s\n    {\n        %s %s;\n    }\n", (int)(dot - key), key, dot + 1,
+                 value);
+        write_umppm(d, body);
+        return 6;
+    }
+    snprintf(body, sizeof body, "    %s %s;\n", key, value);
+    write_umppm(d, body);
+    return 4;
+}
+
+static void assert_umppm_equal(const case_umppm *a, const case_umppm *b)
+{
+    assert_int_equal(a->variant_star, b->variant_star);
+    TU_CLOSE(a->alpha, b->alpha, 0);
+    assert_string_equal(a->laplacian, b->laplacian);
+    TU_CLOSE(a->re_factor, b->re_factor, 0);
+    assert_int_equal(a->write_quality, b->write_quality);
+    assert_string_equal(a->ppe_solver, b->ppe_solver);
+    assert_string_equal(a->pred_pc, b->pred_pc);
+    TU_CLOSE(a->pred_tol, b->pred_tol, 0);
+    assert_int_equal(a->pred_maxit, b->pred_maxit);
+    assert_string_equal(a->cloud_name, b->cloud_name);
+    assert_int_equal(a->sort_interval, b->sort_interval);
+}
+
+/* The table itself: keys unique, field sizes match the types, defaults are
+ * valid values whose text and number agree. */
+static void test_umppm_table(void **state)
+{
+    (void)state;
+    size_t n;
+    const case_option *t = case_umppm_options(&n);
+    assert_int_equal(n, 11);
+    for (size_t i = 0; i < n; i++) {
+        const case_option *o = &t[i];
+        assert_non_null(o->key);
+        assert_non_null(o->help);
+        assert_true(o->help[0] && !strchr(o->help, '\n'));
+        for (size_t j = 0; j < i; j++)
+            assert_string_not_equal(t[j].key, o->key);
+        assert_true(o->offset + o->size <= sizeof(case_umppm));
+        char *end;
+        switch (o->type) {
+        case CASE_OPT_CHOICE: {
+            assert_non_null(o->choices);
+            int k = -1;
+            for (int c = 0; o->choices[c]; c++) {
+                if (strcmp(o->choices[c], o->default_text) == 0)
+                    k = c;
+                if (!o->choice_values)
+                    assert_true(strlen(o->choices[c]) < o->size);
+            }
+            if (k < 0)
+                fail_msg("%s: default %s is not a choice", o->key, o->default_text);
+            if (o->choice_values) {
+                assert_int_equal(o->size, sizeof(int));
+                TU_CLOSE(o->default_value, o->choice_values[k], 0);
+            }
+            break;
+        }
+        case CASE_OPT_SCALAR:
+            assert_int_equal(o->size, sizeof(double));
+            TU_CLOSE(strtod(o->default_text, &end), o->default_value, 0);
+            assert_true(*end == '\0');
+            break;
+        case CASE_OPT_LABEL:
+            assert_int_equal(o->size, sizeof(long));
+            TU_CLOSE((double)strtol(o->default_text, &end, 10), o->default_value, 0);
+            assert_true(*end == '\0');
+            break;
+        case CASE_OPT_BOOL:
+            assert_int_equal(o->size, sizeof(int));
+            assert_true(strcmp(o->default_text, o->default_value ? "yes" : "no") == 0);
+            break;
+        case CASE_OPT_WORD:
+            assert_null(o->choices);
+            assert_true(strlen(o->default_text) < o->size);
+            break;
+        }
+    }
+    /* what the brief of each entry says */
+    char b[256];
+    assert_string_equal(case_option_allowed(opt("variant"), b, sizeof b), "UMPPM UMPPMstar UMPPM*");
+    assert_string_equal(case_option_allowed(opt("alpha"), b, sizeof b), "(0, 1)");
+    assert_string_equal(case_option_allowed(opt("reFactor"), b, sizeof b), "0 or [1, 4]");
+    assert_string_equal(case_option_allowed(opt("predictorSolver.tolerance"), b, sizeof b), "> 0");
+    assert_string_equal(case_option_allowed(opt("predictorSolver.maxIter"), b, sizeof b), ">= 1");
+    assert_string_equal(case_option_allowed(opt("sortInterval"), b, sizeof b), ">= 0");
+    assert_string_equal(case_option_allowed(opt("writeQuality"), b, sizeof b), "yes/no");
+    assert_int_equal(opt("sortInterval")->type, CASE_OPT_LABEL);
+    assert_string_equal(opt("sortInterval")->default_text, "1");
+}
+
+static void test_umppm_defaults(void **state)
+{
+    (void)state;
+    char d[64];
+    tu_tmpdir(d, sizeof d);
+    mk(d, "system");
+    case_umppm def, u;
+    ump_err err;
+    case_umppm_defaults(&def);
+    /* the defaults as they always were */
+    assert_int_equal(def.variant_star, 1);
+    TU_CLOSE(def.alpha, 0.09, 0);
+    assert_string_equal(def.laplacian, "CPM");
+    TU_CLOSE(def.re_factor, 0, 0);
+    assert_int_equal(def.write_quality, 0);
+    assert_string_equal(def.ppe_solver, "auto");
+    assert_string_equal(def.pred_pc, "Jacobi");
+    TU_CLOSE(def.pred_tol, 1e-12, 0);
+    assert_int_equal(def.pred_maxit, 500);
+    assert_string_equal(def.cloud_name, "umppmCloud");
+    assert_int_equal(def.sort_interval, 1);
+
+    /* no UMPPM, an empty one, and every default written out from the table */
+    write2(d, "system/fvSolution", HDR, "PISO { nCorrectors 2; }\n");
+    assert_int_equal(case_read_umppm(d, &u, &err), UMP_OK);
+    assert_umppm_equal(&u, &def);
+    assert_memory_equal(&u, &def, sizeof u);
+    write_umppm(d, "");
+    assert_int_equal(case_read_umppm(d, &u, &err), UMP_OK);
+    assert_umppm_equal(&u, &def);
+    char body[4096] = "", sub[1024] = "";
+    size_t n;
+    const case_option *t = case_umppm_options(&n);
+    for (size_t i = 0; i < n; i++) {
+        const char *dot = strchr(t[i].key, '.');
+        char *dst = dot ? sub : body;
+        size_t cap = dot ? sizeof sub : sizeof body;
+        snprintf(dst + strlen(dst), cap - strlen(dst), "    %s %s;\n", dot ? dot + 1 : t[i].key,
+                 t[i].default_text);
+    }
+    snprintf(body + strlen(body), sizeof body - strlen(body), "    predictorSolver\n    {\n%s    }\n", sub);
+    write_umppm(d, body);
+    if (case_read_umppm(d, &u, &err) != UMP_OK)
+        fail_msg("%s\n%s", err.msg, body);
+    assert_umppm_equal(&u, &def);
+
+    /* the solver's own defaults agree with the table */
+    sol_settings s;
+    sol_default_settings(&s);
+    assert_int_equal(s.variant, def.variant_star ? PART_UMPPM_STAR : PART_UMPPM);
+    TU_CLOSE(s.alpha, def.alpha, 0);
+    assert_int_equal((int)s.lap.model, lap_parse(def.laplacian));
+    TU_CLOSE(s.lap.re_factor, def.re_factor, 0);
+    assert_int_equal(s.ppe_solver, LSOLVE_AUTO);
+    assert_string_equal(def.ppe_solver, "auto");
+    assert_int_equal(s.pred_pc, LSOLVE_PC_JACOBI);
+    assert_string_equal(def.pred_pc, "Jacobi");
+    assert_int_equal(s.sort_interval, (int)def.sort_interval);
+    TU_CLOSE(s.pred_tol, def.pred_tol, 0);
+    assert_int_equal(s.pred_maxit, def.pred_maxit);
+    tu_rmtree(d);
+}
+
+static void test_umppm_values(void **state)
+{
+    (void)state;
+    char d[64];
+    tu_tmpdir(d, sizeof d);
+    mk(d, "system");
+    case_umppm u;
+    ump_err err;
+    write_umppm(d, "    variant UMPPM; alpha 0.05; laplacian IPS; reFactor 2.5; writeQuality yes;\n"
+                   "    ppeSolver KLU; predictorSolver { preconditioner ILU0; tolerance 1e-8; maxIter 50; }\n"
+                   "    cloudName myCloud; sortInterval 0;\n");
+    if (case_read_umppm(d, &u, &err) != UMP_OK)
+        fail_msg("%s", err.msg);
+    assert_int_equal(u.variant_star, 0);
+    TU_CLOSE(u.alpha, 0.05, 0);
+    assert_string_equal(u.laplacian, "IPS");
+    TU_CLOSE(u.re_factor, 2.5, 0);
+    assert_int_equal(u.write_quality, 1);
+    assert_string_equal(u.ppe_solver, "KLU");
+    assert_string_equal(u.pred_pc, "ILU0");
+    TU_CLOSE(u.pred_tol, 1e-8, 0);
+    assert_int_equal(u.pred_maxit, 50);
+    assert_string_equal(u.cloud_name, "myCloud");
+    assert_int_equal(u.sort_interval, 0);
+    /* boundary and special values that are allowed */
+    struct { const char *key, *value; } ok[] = {
+        {"variant", "\"UMPPM*\""}, {"variant", "UMPPM*"}, {"variant", "UMPPMstar"}, {"reFactor", "0"}, {"reFactor", "1"},
+        {"reFactor", "4"}, {"predictorSolver.maxIter", "1"}, {"sortInterval", "100"},
+        {"writeQuality", "on"}, {"writeQuality", "1"}, {"alpha", "1e-6"}, {"cloudName", "\"my cloud\""},
+    };
+    for (size_t i = 0; i < sizeof ok / sizeof ok[0]; i++) {
+        write_one(d, ok[i].key, ok[i].value);
+        if (case_read_umppm(d, &u, &err) != UMP_OK)
+            fail_msg("%s %s: %s", ok[i].key, ok[i].value, err.msg);
+    }
+    assert_string_equal(u.cloud_name, "my cloud");
+    /* a pattern key reads as OpenFOAM's (and is not an unknown key) */
+    write_umppm(d, "    \"alph.*\" 0.2;\n");
+    assert_int_equal(case_read_umppm(d, &u, &err), UMP_OK);
+    TU_CLOSE(u.alpha, 0.2, 0);
+    /* $macros and #include'd entries are entries like the others */
+    write2(d, "system/fvSolution", HDR, "a 0.3;\nUMPPM { alpha $a; }\n");
+    assert_int_equal(case_read_umppm(d, &u, &err), UMP_OK);
+    TU_CLOSE(u.alpha, 0.3, 0);
+    tu_rmtree(d);
+}
+
+/* Refused values: the one-line message names file:line, the key, the value
+ * and what is allowed. */
+static void test_umppm_bad_values(void **state)
+{
+    (void)state;
+    char d[64];
+    tu_tmpdir(d, sizeof d);
+    mk(d, "system");
+    case_umppm u;
+    ump_err err;
+    struct { const char *key, *value, *msg; } bad[] = {
+        {"variant", "foo", "system/fvSolution:4: UMPPM variant 'foo' is not one of: UMPPM UMPPMstar UMPPM*"},
+        {"variant", "UMPPM star", "system/fvSolution:4: UMPPM variant: expected one word, found word 'UMPPM' ...; "
+                                  "allowed UMPPM UMPPMstar UMPPM*"},
+        {"laplacian", "SPH", "system/fvSolution:4: UMPPM laplacian 'SPH' is not one of: CPM MPS IPS PS"},
+        {"ppeSolver", "MUMPS", "system/fvSolution:4: UMPPM ppeSolver 'MUMPS' is not one of: auto UMFPACK KLU CHOLMOD"},
+        {"predictorSolver.preconditioner", "ILU1",
+         "system/fvSolution:6: UMPPM predictorSolver.preconditioner 'ILU1' is not one of: ILU0 Jacobi none"},
+        {"alpha", "0", "system/fvSolution:4: UMPPM alpha 0 is out of range: allowed (0, 1)"},
+        {"alpha", "1", "system/fvSolution:4: UMPPM alpha 1 is out of range: allowed (0, 1)"},
+        {"alpha", "1.5", "system/fvSolution:4: UMPPM alpha 1.5 is out of range: allowed (0, 1)"},
+        {"alpha", "-0.1", "system/fvSolution:4: UMPPM alpha -0.1 is out of range: allowed (0, 1)"},
+        {"alpha", "nan", "system/fvSolution:4: UMPPM alpha nan is out of range: allowed (0, 1)"},
+        {"alpha", "big", "system/fvSolution:4: UMPPM alpha: expected a number, found word 'big'; allowed (0, 1)"},
+        {"alpha", "{ x 1; }", "system/fvSolution:4: UMPPM alpha: expected a number, found a dictionary; allowed (0, 1)"},
+        {"reFactor", "7", "system/fvSolution:4: UMPPM reFactor 7 is out of range: allowed 0 or [1, 4]"},
+        {"reFactor", "0.5", "system/fvSolution:4: UMPPM reFactor 0.5 is out of range: allowed 0 or [1, 4]"},
+        {"reFactor", "-1", "system/fvSolution:4: UMPPM reFactor -1 is out of range: allowed 0 or [1, 4]"},
+        {"writeQuality", "maybe", "system/fvSolution:4: UMPPM writeQuality: expected a switch (yes/no, on/off, "
+                                  "true/false, 1/0), found word 'maybe'"},
+        {"predictorSolver.tolerance", "0",
+         "system/fvSolution:6: UMPPM predictorSolver.tolerance 0 is out of range: allowed > 0"},
+        {"predictorSolver.tolerance", "-1e-3",
+         "system/fvSolution:6: UMPPM predictorSolver.tolerance -0.001 is out of range: allowed > 0"},
+        {"predictorSolver.maxIter", "0",
+         "system/fvSolution:6: UMPPM predictorSolver.maxIter 0 is out of range: allowed >= 1"},
+        {"predictorSolver.maxIter", "1.5",
+         "system/fvSolution:6: UMPPM predictorSolver.maxIter: expected an integer, found scalar 1.5; allowed >= 1"},
+        {"sortInterval", "-1", "system/fvSolution:4: UMPPM sortInterval -1 is out of range: allowed >= 0"},
+        {"sortInterval", "2.5", "system/fvSolution:4: UMPPM sortInterval: expected an integer, found scalar 2.5; allowed >= 0"},
+        {"cloudName", "(a b)", "system/fvSolution:4: UMPPM cloudName: expected one word, found '(' ..."},
+        {"cloudName", "a0123456789012345678901234567890123456789012345678901234567890123",
+         "system/fvSolution:4: UMPPM cloudName 'a012345678901234567890123456789012345678...' is too long: "
+         "at most 63 characters"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        write_one(d, bad[i].key, bad[i].value);
+        ump_status rc = case_read_umppm(d, &u, &err);
+        if (rc == UMP_OK)
+            fail_msg("%s %s accepted", bad[i].key, bad[i].value);
+        assert_true(rc == UMP_ERR_INPUT || rc == UMP_ERR_PARSE);
+        if (!strstr(err.msg, bad[i].msg) || !strstr(err.msg, d))
+            fail_msg("%s %s:\n  got  '%s'\n  want '%s'", bad[i].key, bad[i].value, err.msg, bad[i].msg);
+        assert_null(strchr(err.msg, '\n'));
+    }
+    /* every option of the table: values just outside what it allows */
+    size_t n;
+    const case_option *t = case_umppm_options(&n);
+    for (size_t i = 0; i < n; i++) {
+        const case_option *o = &t[i];
+        const case_opt_range *r = &o->range;
+        char vals[6][64];
+        int nv = 0;
+        if (o->type == CASE_OPT_CHOICE)
+            snprintf(vals[nv++], 64, "bogus");
+        if (o->type == CASE_OPT_BOOL)
+            snprintf(vals[nv++], 64, "2");
+        if (o->type == CASE_OPT_SCALAR || o->type == CASE_OPT_LABEL) {
+            double step = o->type == CASE_OPT_LABEL ? 1 : 0.5 * (fabs(r->lo) + fabs(r->hi)) + 0.25;
+            if (r->has_lo)
+                snprintf(vals[nv++], 64, "%.17g", r->lo - step);
+            if (r->has_lo && r->lo_open && !(r->or_zero && r->lo == 0))
+                snprintf(vals[nv++], 64, "%.17g", r->lo);
+            if (r->has_hi)
+                snprintf(vals[nv++], 64, "%.17g", r->hi + step);
+            if (r->has_hi && r->hi_open)
+                snprintf(vals[nv++], 64, "%.17g", r->hi);
+            snprintf(vals[nv++], 64, "word");
+        }
+        if (o->type == CASE_OPT_WORD)
+            snprintf(vals[nv++], 64, "1");
+        assert_true(nv > 0);
+        char allowed[256], want[512];
+        case_option_allowed(o, allowed, sizeof allowed);
+        for (int k = 0; k < nv; k++) {
+            int line = write_one(d, o->key, vals[k]);
+            if (case_read_umppm(d, &u, &err) == UMP_OK)
+                fail_msg("%s %s accepted", o->key, vals[k]);
+            snprintf(want, sizeof want, "system/fvSolution:%d: UMPPM %s", line, o->key);
+            if (!strstr(err.msg, want) || (o->type != CASE_OPT_BOOL && o->type != CASE_OPT_WORD &&
+                                           !strstr(err.msg, allowed)))
+                fail_msg("%s %s: '%s' lacks '%s' or '%s'", o->key, vals[k], err.msg, want, allowed);
+        }
+    }
+    tu_rmtree(d);
+}
+
+static void test_umppm_unknown_keys(void **state)
+{
+    (void)state;
+    char d[64];
+    tu_tmpdir(d, sizeof d);
+    mk(d, "system");
+    case_umppm u;
+    ump_err err;
+    struct { const char *body, *msg; } bad[] = {
+        {"    variant UMPPM;\n    alpah 0.1;\n",
+         "system/fvSolution:5: UMPPM: unknown key 'alpah'; known keys: variant alpha laplacian reFactor "
+         "writeQuality ppeSolver predictorSolver cloudName sortInterval"},
+        {"    predictorSolver\n    {\n        tol 1e-6;\n    }\n",
+         "system/fvSolution:6: UMPPM predictorSolver: unknown key 'tol'; known keys: preconditioner tolerance "
+         "maxIter"},
+        {"    \"zz.*\" 1;\n", "system/fvSolution:4: UMPPM: unknown key 'zz.*'; known keys: variant"},
+        {"    predictorSolver 3;\n",
+         "system/fvSolution:4: UMPPM predictorSolver must be a dictionary { ... }, found label 3"},
+        {"    tolerance 1e-6;\n", "system/fvSolution:4: UMPPM: unknown key 'tolerance'"},
+        {"    sub { alpha 0.1; }\n", "system/fvSolution:4: UMPPM: unknown key 'sub'"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        write_umppm(d, bad[i].body);
+        assert_int_equal(case_read_umppm(d, &u, &err), UMP_ERR_INPUT);
+        if (!strstr(err.msg, bad[i].msg))
+            fail_msg("case %zu:\n  got  '%s'\n  want '%s'", i, err.msg, bad[i].msg);
+    }
+    /* UMPPM that is not a dictionary */
+    write2(d, "system/fvSolution", HDR, "PISO { }\nUMPPM 3;\n");
+    assert_int_equal(case_read_umppm(d, &u, &err), UMP_ERR_INPUT);
+    if (!strstr(err.msg, "system/fvSolution:3: UMPPM must be a dictionary { ... }, found label 3"))
+        fail_msg("%s", err.msg);
+    write2(d, "system/fvSolution", HDR, "UMPPM UMPPMstar;\n");
+    assert_int_equal(case_read_umppm(d, &u, &err), UMP_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "UMPPM must be a dictionary { ... }, found word 'UMPPMstar'"));
+    /* a missing fvSolution stays an I/O error */
+    char path[128];
+    snprintf(path, sizeof path, "%s/system/fvSolution", d);
+    remove(path);
+    assert_int_equal(case_read_umppm(d, &u, &err), UMP_ERR_IO);
+    tu_rmtree(d);
+}
+
+/* umppmFoam -help: heading, then every key with its default, allowed values
+ * and help line. */
+static void test_umppm_help(void **state)
+{
+    (void)state;
+    size_t len = case_umppm_help(NULL, 0);
+    assert_true(len > 100);
+    char *text = malloc(len + 1);
+    assert_int_equal(case_umppm_help(text, len + 1), len);
+    assert_int_equal(strlen(text), len);
+    assert_non_null(strstr(text, "UMPPM dictionary (system/fvSolution)"));
+    assert_non_null(strstr(text, "unknown keys are refused"));
+    size_t n;
+    const case_option *t = case_umppm_options(&n);
+    for (size_t i = 0; i < n; i++) {
+        char allowed[256], row[512];
+        case_option_allowed(&t[i], allowed, sizeof allowed);
+        snprintf(row, sizeof row, "\n  %s ", t[i].key);
+        const char *p = strstr(text, row);
+        if (!p)
+            fail_msg("-help lacks %s", t[i].key);
+        p++;
+        /* key, default and allowed on one line, the help on the next */
+        const char *eol = strchr(p, '\n');
+        snprintf(row, sizeof row, "%.*s", (int)(eol - p), p);
+        if (!strstr(row, t[i].default_text) || !strstr(row, allowed))
+            fail_msg("-help row '%s' lacks '%s' or '%s'", row, t[i].default_text, allowed);
+        snprintf(row, sizeof row, "\n      %s\n", t[i].help);
+        if (!strstr(eol, row))
+            fail_msg("-help lacks the help of %s", t[i].key);
+    }
+    /* lines fit a terminal */
+    for (const char *p = text; *p;) {
+        const char *e = strchr(p, '\n');
+        size_t l = e ? (size_t)(e - p) : strlen(p);
+        if (l > 79)
+            fail_msg("-help line longer than 79: '%.*s'", (int)l, p);
+        p += l + (e != NULL);
+    }
+    /* truncated output is NUL-terminated and reports the full length */
+    char small[16];
+    assert_int_equal(case_umppm_help(small, sizeof small), len);
+    assert_int_equal(strlen(small), sizeof small - 1);
+    free(text);
+}
+
+/* README.md's Settings table has one row per option: key, default, allowed. */
+static void test_umppm_readme(void **state)
+{
+    (void)state;
+    FILE *fp = fopen("README.md", "rb");
+    if (!fp)
+        skip();
+    static char text[1 << 20];
+    size_t len = fread(text, 1, sizeof text - 1, fp);
+    fclose(fp);
+    text[len] = '\0';
+    const char *table = strstr(text, "| key | default | allowed | meaning |");
+    assert_non_null(table);
+    const char *end = strstr(table, "\n\n");
+    assert_non_null(end);
+    size_t n, rows = 0;
+    const case_option *t = case_umppm_options(&n);
+    for (size_t i = 0; i < n; i++) {
+        char allowed[256], row[512];
+        case_option_allowed(&t[i], allowed, sizeof allowed);
+        snprintf(row, sizeof row, "\n| `%s` | `%s` | `%s` | ", t[i].key, t[i].default_text, allowed);
+        const char *p = strstr(table, row);
+        if (!p || p > end)
+            fail_msg("README.md Settings table lacks the row '%s'", row + 1);
+    }
+    for (const char *p = table; p && p < end; p = strchr(p + 1, '\n'))
+        rows += p[1] == '|' && p[2] == ' ' && p[3] == '`';
+    assert_int_equal(rows, n);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -263,6 +715,13 @@ int main(void)
         cmocka_unit_test(test_transport_and_solution),
         cmocka_unit_test(test_times),
         cmocka_unit_test(test_field_matching),
+        cmocka_unit_test(test_umppm_table),
+        cmocka_unit_test(test_umppm_defaults),
+        cmocka_unit_test(test_umppm_values),
+        cmocka_unit_test(test_umppm_bad_values),
+        cmocka_unit_test(test_umppm_unknown_keys),
+        cmocka_unit_test(test_umppm_help),
+        cmocka_unit_test(test_umppm_readme),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
