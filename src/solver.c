@@ -16,8 +16,7 @@
  * Data. Three kinds, kept apart:
  *   sol_setup  what never changes after sol_create: the mesh operators (LS
  *              gradient, the factorized PPE, the sorted particle stencils,
- *              the pressure-gradient operator), the boundary-condition
- *              tables, gh;
+ *              the faces each cell owns), the boundary-condition tables, gh;
  *   sol_state  the state of the run: particles and their bins, boundary
  *              particle values, mesh fields, the predictor system;
  *   sol_work   one per thread: gathered neighbours, offsets, fit
@@ -44,15 +43,14 @@
  *     on symmetry planes the owner cell velocity without its normal part.
  *   - MLS at a face whose velocity is not prescribed leaves out that face's
  *     own boundary particle (its value is derived from the interior).
- *   - The pressure gradient at a particle (Eq. 10) is the derivative, at
- *     the particle's intermediate position r*, of the quadratic MLS fit
- *     (Eqs. 28-35) of the centroid pressures of its cell and the cell's N2
- *     stencil, the fit being centred at the cell centroid: the centroids
- *     never move, so that fit is a mesh-only operator built once
- *     (pgrad_build), and each step costs five dot products per cell and
- *     two multiply-adds per particle (it was one MLS fit per particle per
- *     step, centred at the particle). Both are exact for quadratic
- *     pressures; see docs/METHOD.md for the comparison.
+ *   - The pressure gradient at a particle (Eq. 10) is the MLS derivative of
+ *     the centroid pressures of the particle's cell and its N2 stencil,
+ *     evaluated at the intermediate position r* where the particle was
+ *     binned for Step 8. A mesh-only alternative (the quadratic MLS fit
+ *     centred at the cell centroid, built once, Taylor-expanded to the
+ *     particle) was tried and measured worse: on the Re 100 cavity with 404
+ *     triangles (test_solver_cavity.sh) v_rms against Ghia rose from 0.0102
+ *     to 0.0117, so the per-particle fit (the paper's) stays.
  *   - A particle whose CPM moment matrix is singular (too few independent
  *     neighbours) gets the MPS Laplacian for that step (counted in stats).
  *   - Particles that cross a boundary face at r* or r^{n+1} are removed at
@@ -89,10 +87,6 @@
 enum { BU_FIXED = 0, BU_OUTLET, BU_INLETOUTLET, BU_SYMMETRY };
 enum { BT_FIXED = 0, BT_ZEROGRADIENT, BT_INLETOUTLET };
 
-/* Pressure-gradient operator rows per stencil entry: d/dx, d/dy,
- * d2/dxdy, d2/dx2, d2/dy2 at the centroid. */
-enum { PG_X, PG_Y, PG_XY, PG_XX, PG_YY, PG_N };
-
 typedef struct sol_setup {
     const mesh2d *m;
     sol_settings set;
@@ -114,11 +108,6 @@ typedef struct sol_setup {
     ump_idx st_max;            /* largest stencil (cells) */
     /* faces whose u* is interpolated (not fixed, not symmetry), by owner */
     ump_idx *of_off, *of_face;
-    /* pressure-gradient operator: PG_N rows per stencil entry, and whether
-     * the cell's fit fell back to a smaller basis */
-    double *pg;
-    unsigned char *pg_fallback;
-    ump_idx pg_nfallback;
 } sol_setup;
 
 /* A gathered neighbour: fluid particle ref >= 0, boundary particle
@@ -141,7 +130,7 @@ typedef struct sol_state {
     part_bins bins;
     part_boundary bp;
     /* mesh fields */
-    double *p, *uc, *vc, *usc, *vsc, *flux, *gflux, *gx, *gy, *div, *pgc;
+    double *p, *uc, *vc, *usc, *vsc, *flux, *gflux, *gx, *gy, *div;
     double *pf;                /* [nfaces] face pressure of fixed faces (pi) */
     double *Tc, *gtx, *gty;    /* buoyant: mesh temperature T_P, its LS gradient */
     /* per particle */
@@ -264,9 +253,8 @@ void sol_free(sol **pS)
     ppe_free(&su->pe);
     lsolve_rows_free(&st->kry);
     void *arr[] = {su->u_kind, su->ub, su->vb, su->p_dir, su->prgh_f, su->t_kind, su->tb, su->ghc, su->ghf,
-                   su->st_off, su->st_cell, su->st_sx, su->st_sy, su->of_off, su->of_face, su->pg,
-                   su->pg_fallback, st->p, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
-                   st->gy, st->div, st->pgc, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
+                   su->st_off, su->st_cell, su->st_sx, su->st_sy, su->of_off, su->of_face, st->p, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
+                   st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
                    st->av, st->cnt_cell};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
@@ -379,11 +367,12 @@ static ump_status gather_cell(const sol_setup *su, const sol_state *st, sol_work
 }
 
 /* Offsets of the gathered samples from (x, y) into w->h, w->k, w->sref,
- * leaving out the fluid particle `self` (-1: none) and the boundary
- * particle of face `skip_bface` (boundary index, -1: none); returns the
- * count. */
-static int offsets(sol_work *w, size_t n, double x, double y, ump_idx self, ump_idx skip_bface)
+ * leaving out the boundary particle of face `skip_bface` (boundary index,
+ * -1: none); returns the count. */
+static int offsets(sol_work *w, size_t n, double x, double y, ump_idx skip_bface)
 {
+    /* refs are >= 0 (fluid) or -1 - b (boundary particle b); INT32_MIN is
+     * no ref at all */
     ump_idx skip = skip_bface >= 0 ? -1 - skip_bface : INT32_MIN;
     const double *restrict px = w->px, *restrict py = w->py;
     const ump_idx *restrict ref = w->ref;
@@ -397,7 +386,7 @@ static int offsets(sol_work *w, size_t n, double x, double y, ump_idx self, ump_
         h[m] = px[j] - x;
         k[m] = py[j] - y;
         sref[m] = r;
-        m += r != self && r != skip; /* branch-free: a skipped sample is overwritten */
+        m += r != skip; /* branch-free: a skipped sample is overwritten */
     }
     return m;
 }
@@ -657,51 +646,6 @@ static ump_status owned_faces_build(sol_setup *su, ump_err *err)
     return UMP_OK;
 }
 
-/* The pressure-gradient operator of Step 10 (Eq. 10 with Eqs. 33-34): per
- * cell, the quadratic MLS fit (Eqs. 28-35) of the centroid pressures of its
- * stencil, centred at its centroid (x_m, y_m from the cell's extents), as
- * PG_N coefficient rows over the stencil: gradient and second derivatives
- * at the centroid. */
-static ump_status pgrad_build(sol_setup *su, sol_work *w, ump_err *err)
-{
-    const mesh2d *m = su->m;
-    ump_idx nc = m->ncells;
-    size_t tot = (size_t)su->st_off[nc];
-    if (!(su->pg = ump_alloc_array(tot * PG_N, sizeof *su->pg)) ||
-        !(su->pg_fallback = ump_alloc_array((size_t)nc, 1)))
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the pressure-gradient operator");
-    UMP_CALL(work_reserve(w, (size_t)su->st_max, err));
-    double *c6 = ump_alloc_array(6 * (size_t)su->st_max + 6, sizeof *c6);
-    if (!c6)
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the pressure-gradient operator");
-    su->pg_nfallback = 0;
-    for (ump_idx c = 0; c < nc; c++) {
-        ump_idx a0 = su->st_off[c], n = su->st_off[c + 1] - a0;
-        for (ump_idx j = 0; j < n; j++) {
-            ump_idx q = su->st_cell[a0 + j];
-            w->h[j] = m->cx[q] + (su->st_sx ? su->st_sx[a0 + j] : 0) - m->cx[c];
-            w->k[j] = m->cy[q] + (su->st_sy ? su->st_sy[a0 + j] : 0) - m->cy[c];
-        }
-        double *col[6];
-        for (int q = 0; q < 6; q++)
-            col[q] = c6 + (size_t)q * (size_t)su->st_max;
-        mls_info info;
-        mls_basis b = mls_poly(w->h, w->k, (int)n, m->dx[c], m->dy[c], col, &info);
-        su->pg_fallback[c] = b != MLS_QUADRATIC;
-        su->pg_nfallback += b != MLS_QUADRATIC;
-        for (ump_idx j = 0; j < n; j++) {
-            double *r = su->pg + (size_t)(a0 + j) * PG_N;
-            r[PG_X] = col[1][j];
-            r[PG_Y] = col[2][j];
-            r[PG_XY] = col[3][j];
-            r[PG_XX] = col[4][j];
-            r[PG_YY] = col[5][j];
-        }
-    }
-    free(c6);
-    return UMP_OK;
-}
-
 /* ---- per-particle arrays ------------------------------------------------- */
 
 static ump_status grow_particle_work(sol_state *st, size_t n, ump_err *err)
@@ -754,8 +698,7 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     for (size_t i = 0; i < sizeof cellarr / sizeof cellarr[0]; i++)
         if (!(*cellarr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
             goto nomem;
-    if (!(st->pgc = ump_alloc_array((size_t)nc * PG_N, sizeof(double))) ||
-        !(st->cnt_cell = ump_alloc_array((size_t)nc, sizeof(ump_idx))) ||
+    if (!(st->cnt_cell = ump_alloc_array((size_t)nc, sizeof(ump_idx))) ||
         !(st->flux = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->gflux = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->pf = ump_alloc_array((size_t)nf, sizeof(double))) ||
@@ -814,7 +757,6 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     if ((rc = lsq_build(m, &su->g, err)) != UMP_OK ||
         (rc = ppe_create(m, su->g, su->p_dir, &po, &su->pe, err)) != UMP_OK ||
         (rc = stencil_build(su, err)) != UMP_OK || (rc = owned_faces_build(su, err)) != UMP_OK ||
-        (rc = pgrad_build(su, &S->work[0], err)) != UMP_OK ||
         (rc = part_boundary_create(&st->bp, m, err)) != UMP_OK ||
         (rc = part_create((size_t)nc * 2, &st->P, err)) != UMP_OK ||
         (rc = part_seed_centroids(st->P, m, st->uc, st->vc, st->Tc, err)) != UMP_OK ||
@@ -1128,7 +1070,7 @@ static ump_status step7_intermediate(sol *S, double dt, ump_err *err)
 static void mls_value(sol_work *w, size_t cnt, double x, double y, double mdx, double mdy, ump_idx skip_bface,
                       int nv, const double *const *f, const double *const *g, double *out)
 {
-    int n = offsets(w, cnt, x, y, -1, skip_bface);
+    int n = offsets(w, cnt, x, y, skip_bface);
     mls_info info;
     if (mls_weights(w->h, w->k, n, mdx, mdy, w->c0, NULL, NULL, &info) != MLS_QUADRATIC)
         w->mls_fallbacks++;
@@ -1212,33 +1154,34 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
     part_set *P = st->P;
     ump_idx nc = m->ncells;
     size_t n = P->n;
-    /* the pressure-gradient operator applied: grad p and its derivatives at
-     * each centroid (pgrad_build) */
-#pragma omp parallel for schedule(static) num_threads(S->nthreads)
-    for (ump_idx c = 0; c < nc; c++) {
-        double s[PG_N] = {0};
-        for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
-            const double *r = su->pg + (size_t)a * PG_N;
-            double pv = st->p[su->st_cell[a]];
-            for (int q = 0; q < PG_N; q++)
-                s[q] += r[q] * pv;
-        }
-        for (int q = 0; q < PG_N; q++)
-            st->pgc[(size_t)c * PG_N + q] = s[q];
-    }
-    /* u^{n+1} = u* - dt grad p (Eq. 10), grad p at r* from the fitted
-     * quadratic of the particle's cell */
+    /* u^{n+1} = u* - dt grad p (Eq. 10), grad p at r* by the MLS
+     * derivative (Eqs. 33-34) of the centroid pressures of the particle's
+     * cell and its N2 stencil */
     long fb = 0;
-#pragma omp parallel for schedule(static) num_threads(S->nthreads) reduction(+ : fb)
-    for (size_t i = 0; i < n; i++) {
-        ump_idx c = P->cell[i];
-        const double *G = st->pgc + (size_t)c * PG_N;
-        double ax = P->x[i] - m->cx[c], ay = P->y[i] - m->cy[c];
-        double gx = G[PG_X] + G[PG_XX] * ax + G[PG_XY] * ay;
-        double gy = G[PG_Y] + G[PG_XY] * ax + G[PG_YY] * ay;
-        P->u[i] = st->us[i] - dt * gx;
-        P->v[i] = st->vs[i] - dt * gy;
-        fb += su->pg_fallback[c];
+#pragma omp parallel num_threads(S->nthreads) reduction(+ : fb)
+    {
+        sol_work *w = &S->work[thread_id()];
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            ump_idx c = P->cell[i];
+            double x = P->x[i], y = P->y[i];
+            int nn = 0;
+            for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
+                ump_idx q = su->st_cell[a];
+                w->h[nn] = m->cx[q] + (su->st_sx ? su->st_sx[a] : 0) - x;
+                w->k[nn] = m->cy[q] + (su->st_sy ? su->st_sy[a] : 0) - y;
+                w->pv[nn++] = st->p[q];
+            }
+            if (mls_weights(w->h, w->k, nn, m->dx[c], m->dy[c], w->c0, w->cx, w->cy, NULL) != MLS_QUADRATIC)
+                fb++;
+            double gx = 0, gy = 0;
+            for (int j = 0; j < nn; j++) {
+                gx += w->cx[j] * w->pv[j];
+                gy += w->cy[j] * w->pv[j];
+            }
+            P->u[i] = st->us[i] - dt * gx;
+            P->v[i] = st->vs[i] - dt * gy;
+        }
     }
     stats->mls_fallbacks += (int)fb;
     /* r^{n+1} = r^n + dt u^{n+1} (Eq. 7) */
@@ -1518,7 +1461,7 @@ ump_status sol_wall_dTdn(sol *S, ump_idx f, sol_grad_method how, double *dTdn, u
     sol_work *w = &S->work[0];
     size_t cnt;
     UMP_CALL(gather_cell(su, st, w, o, &cnt, err));
-    int n = offsets(w, cnt, m->fx[f], m->fy[f], -1, -1);
+    int n = offsets(w, cnt, m->fx[f], m->fy[f], -1);
     mls_weights(w->h, w->k, n, m->dx[o], m->dy[o], w->c0, w->cx, w->cy, NULL);
     double gx = apply(w->cx, w->sref, n, st->P->T, st->bp.T);
     double gy = apply(w->cy, w->sref, n, st->P->T, st->bp.T);

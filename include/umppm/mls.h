@@ -65,15 +65,4 @@ typedef struct mls_info {
 mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx, double mean_dy,
                       double *c0, double *cx, double *cy, mls_info *info);
 
-/* The whole fitted polynomial: per-sample coefficients c[q][j] of its
- * value (q = 0), d/dx (1), d/dy (2), d2/dxdy (3), d2/dx2 (4), d2/dy2 (5)
- * at the target (Eqs. 32-34 and their second-order companions), so that a
- * derivative near the target follows by Taylor expansion of the fitted
- * quadratic: d/dx at offset (a, b) = c1 + c4 a + c3 b (exact for quadratic
- * data). Same weights, scales and fall-backs as mls_weights; with the
- * linear basis the second derivatives are 0, with Shepard every derivative
- * is. Used once per cell at start-up (mesh-only operators). */
-mls_basis mls_poly(const double *dx, const double *dy, int n, double mean_dx, double mean_dy,
-                   double *const c[6], mls_info *info);
-
 #endif
