@@ -13,7 +13,7 @@ BUILD   ?= build/release
 OPT     ?= -O2 -g
 WERROR  ?=
 SAN     ?=
-OMP     ?= -fopenmp
+OMP     ?= -fopenmp -fno-math-errno
 CPPFLAGS = -Iinclude -I/usr/include/suitesparse -D_XOPEN_SOURCE=700
 CFLAGS_ALL = -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wvla $(WERROR) $(OPT) $(OMP) $(SAN)
 LDLIBS  = -lumfpack -lklu -lcholmod -lamd -lcolamd -lsuitesparseconfig -lz -lm

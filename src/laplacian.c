@@ -151,9 +151,11 @@ static ump_status cpm_coeffs(int dim, const double *const *off, int n, double *a
  * weighted moments S_ab = sum_j w_j^2 h^a k^b, 2 <= a + b <= 4, and only
  * the one combined column q = M^{-1} (e_hh + e_kk) is applied (Eq. 16:
  * lap = phi_xx + phi_yy). Same numbers as the generic loop up to rounding. */
-static ump_status cpm_coeffs2(const double *h, const double *k, int n, double *a, ump_err *err)
+static ump_status cpm_coeffs2(const double *restrict h, const double *restrict k, int n, double *restrict a,
+                              ump_err *err)
 {
     double r2max = 0;
+#pragma omp simd reduction(max : r2max)
     for (int j = 0; j < n; j++) {
         double r2 = h[j] * h[j] + k[j] * k[j];
         r2max = r2 > r2max ? r2 : r2max;
@@ -163,33 +165,40 @@ static ump_status cpm_coeffs2(const double *h, const double *k, int n, double *a
                         "CPM Laplacian: %d neighbours, none at a finite non-zero distance", n);
     double iL = 1 / sqrt(r2max), rmin2 = CPM_COINCIDENT * CPM_COINCIDENT;
     enum { S20, S11, S02, S30, S21, S12, S03, S40, S31, S22, S13, S04, NS };
-    double S[NS] = {0};
+    double S[NS];
     int nused = 0;
+    double s20 = 0, s11 = 0, s02 = 0, s30 = 0, s21 = 0, s12 = 0, s03 = 0, s40 = 0, s31 = 0, s22 = 0, s13 = 0,
+           s04 = 0;
+    /* branch-free, so that it vectorises (omp simd; a fixed summation
+     * order, the same bits for any thread count) */
+#pragma omp simd reduction(+ : s20, s11, s02, s30, s21, s12, s03, s40, s31, s22, s13, s04)
     for (int j = 0; j < n; j++) {
         double X = h[j] * iL, Y = k[j] * iL, r2 = X * X + Y * Y;
-        if (r2 < rmin2) {
-            a[j] = 0; /* coincident: no information (and an infinite weight) */
-            continue;
-        }
-        double w2 = 1 / (r2 * r2 * r2); /* w_j^2 = 1/r^6 */
+        /* coincident: no information (and an infinite weight): a_j = 0 */
+        double r2s = r2 >= rmin2 ? r2 : 1;
+        double inv = 1 / (r2s * r2s * r2s);
+        double w2 = r2 >= rmin2 ? inv : 0; /* w_j^2 = 1/r^6 */
         double wx = w2 * X, wy = w2 * Y;
         double wxx = wx * X, wxy = wx * Y, wyy = wy * Y;
         double wxxx = wxx * X, wxxy = wxx * Y, wxyy = wxy * Y, wyyy = wyy * Y;
-        S[S20] += wxx;
-        S[S11] += wxy;
-        S[S02] += wyy;
-        S[S30] += wxxx;
-        S[S21] += wxxy;
-        S[S12] += wxyy;
-        S[S03] += wyyy;
-        S[S40] += wxxx * X;
-        S[S31] += wxxx * Y;
-        S[S22] += wxxy * Y;
-        S[S13] += wxyy * Y;
-        S[S04] += wyyy * Y;
+        s20 += wxx;
+        s11 += wxy;
+        s02 += wyy;
+        s30 += wxxx;
+        s21 += wxxy;
+        s12 += wxyy;
+        s03 += wyyy;
+        s40 += wxxx * X;
+        s31 += wxxx * Y;
+        s22 += wxxy * Y;
+        s13 += wxyy * Y;
+        s04 += wyyy * Y;
         a[j] = w2; /* parked until q is known */
-        nused++;
     }
+    for (int j = 0; j < n; j++)
+        nused += a[j] != 0;
+    S[S20] = s20, S[S11] = s11, S[S02] = s02, S[S30] = s30, S[S21] = s21, S[S12] = s12, S[S03] = s03;
+    S[S40] = s40, S[S31] = s31, S[S22] = s22, S[S13] = s13, S[S04] = s04;
     if (nused < 5)
         return UMP_FAIL(err, UMP_ERR_SINGULAR,
                         "CPM Laplacian: %d distinct neighbours, at least 5 needed in 2-D", nused);
@@ -215,9 +224,8 @@ static ump_status cpm_coeffs2(const double *h, const double *k, int n, double *a
     for (int r = 0; r < 5; r++)
         q[r] = c2[r] + c4[r];
     double il2 = 1 / r2max; /* a_j = a_hat_j / L^2 */
-    for (int j = 0; j < n; j++) {
-        if (a[j] == 0)
-            continue;
+#pragma omp simd
+    for (int j = 0; j < n; j++) { /* coincident neighbours have a_j = 0 parked: they stay 0 */
         double X = h[j] * iL, Y = k[j] * iL;
         double s = q[0] * X + q[1] * Y + q[2] * 0.5 * X * X + q[3] * X * Y + q[4] * 0.5 * Y * Y;
         a[j] *= s * il2;

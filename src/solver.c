@@ -112,6 +112,7 @@ typedef struct sol_setup {
 
 /* A gathered neighbour: fluid particle ref >= 0, boundary particle
  * ref = -1 - b. */
+#define SOL_MAX_VALUES 2 /* quantities one MLS fit interpolates (u, v) */
 typedef struct sol_work {
     size_t cap;
     double *px, *py;           /* gathered positions (stencil shift applied) */
@@ -119,7 +120,8 @@ typedef struct sol_work {
     double *h, *k;             /* offsets from the target */
     ump_idx *sref;             /* refs of the samples in h, k order */
     double *c0, *cx, *cy;      /* MLS / Laplacian coefficients */
-    double *pv;                /* stencil values (pressure operator) */
+    double *pv;                /* stencil values (pressure gradient) */
+    double *gv[SOL_MAX_VALUES]; /* gathered sample values (gather_values) */
     long lap_fallbacks, mls_fallbacks;
     ump_err err;               /* first error of this thread in a stage */
     ump_status rc;
@@ -233,7 +235,7 @@ const char *sol_stage_name(int stage)
 
 static void work_free(sol_work *w)
 {
-    void *arr[] = {w->px, w->py, w->ref, w->h, w->k, w->sref, w->c0, w->cx, w->cy, w->pv};
+    void *arr[] = {w->px, w->py, w->ref, w->h, w->k, w->sref, w->c0, w->cx, w->cy, w->pv, w->gv[0], w->gv[1]};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
     memset(w, 0, sizeof *w);
@@ -276,7 +278,7 @@ static ump_status work_reserve(sol_work *w, size_t n, ump_err *err)
     if (n <= w->cap)
         return UMP_OK;
     size_t c = n + n / 2 + 64;
-    double **d[] = {&w->px, &w->py, &w->h, &w->k, &w->c0, &w->cx, &w->cy, &w->pv};
+    double **d[] = {&w->px, &w->py, &w->h, &w->k, &w->c0, &w->cx, &w->cy, &w->pv, &w->gv[0], &w->gv[1]};
     for (size_t i = 0; i < sizeof d / sizeof d[0]; i++) {
         double *q = ump_realloc_array(*d[i], c, sizeof(double));
         if (!q)
@@ -1067,15 +1069,65 @@ static ump_status step7_intermediate(sol *S, double dt, ump_err *err)
 
 /* MLS value (Eq. 32) at (x, y) of the gathered samples: fluid quantities
  * f[k], boundary quantities g[k], k < nv. */
-static void mls_value(sol_work *w, size_t cnt, double x, double y, double mdx, double mdy, ump_idx skip_bface,
-                      int nv, const double *const *f, const double *const *g, double *out)
+/* The values of nv <= SOL_MAX_VALUES quantities at the gathered samples
+ * (fluid f[q], boundary g[q]) into w->gv[q], once per gather. */
+static void gather_values(sol_work *w, size_t cnt, int nv, const double *const *f, const double *const *g)
 {
-    int n = offsets(w, cnt, x, y, skip_bface);
+    for (int q = 0; q < nv; q++) {
+        const double *restrict fq = f[q], *restrict gq = g[q];
+        double *restrict v = w->gv[q];
+        const ump_idx *restrict ref = w->ref;
+        for (size_t j = 0; j < cnt; j++) {
+            ump_idx r = ref[j];
+            v[j] = r >= 0 ? fq[r] : gq[-1 - r];
+        }
+    }
+}
+
+/* MLS values (Eq. 32) at (x, y) from the gathered samples and their
+ * gather_values; the boundary particle of face skip_bface (-1: none) is
+ * left out by moving it to the end of the gathered arrays (the order of
+ * the samples is immaterial to the fit). Contiguous arrays throughout, so
+ * the offset, weight and dot-product loops vectorise. */
+static void mls_fit_values(sol_work *w, size_t cnt, double x, double y, double mdx, double mdy,
+                           ump_idx skip_bface, int nv, double *out)
+{
+    size_t n = cnt > MLS_MAX_SAMPLES ? MLS_MAX_SAMPLES : cnt;
+    if (skip_bface >= 0) {
+        ump_idx r = -1 - skip_bface;
+        for (size_t j = 0; j < n; j++)
+            if (w->ref[j] == r) {
+                size_t e = n - 1;
+                double t;
+                t = w->px[j], w->px[j] = w->px[e], w->px[e] = t;
+                t = w->py[j], w->py[j] = w->py[e], w->py[e] = t;
+                ump_idx ti = w->ref[j];
+                w->ref[j] = w->ref[e], w->ref[e] = ti;
+                for (int q = 0; q < nv; q++)
+                    t = w->gv[q][j], w->gv[q][j] = w->gv[q][e], w->gv[q][e] = t;
+                n = e;
+                break;
+            }
+    }
+    const double *restrict px = w->px, *restrict py = w->py;
+    double *restrict h = w->h, *restrict k = w->k;
+#pragma omp simd
+    for (size_t j = 0; j < n; j++) {
+        h[j] = px[j] - x;
+        k[j] = py[j] - y;
+    }
     mls_info info;
-    if (mls_weights(w->h, w->k, n, mdx, mdy, w->c0, NULL, NULL, &info) != MLS_QUADRATIC)
+    if (mls_weights(h, k, (int)n, mdx, mdy, w->c0, NULL, NULL, &info) != MLS_QUADRATIC)
         w->mls_fallbacks++;
-    for (int q = 0; q < nv; q++)
-        out[q] = apply(w->c0, w->sref, n, f[q], g[q]);
+    const double *restrict c0 = w->c0;
+    for (int q = 0; q < nv; q++) {
+        const double *restrict v = w->gv[q];
+        double sum = 0;
+#pragma omp simd reduction(+ : sum)
+        for (size_t j = 0; j < n; j++)
+            sum += c0[j] * v[j];
+        out[q] = sum;
+    }
 }
 
 /* u* at face centres (the fluxes u*_f . A_f of Eq. 20) and centroids, by
@@ -1111,7 +1163,8 @@ static void step8_mls_velocity(sol *S)
                 continue;
             }
             double uv[2];
-            mls_value(w, cnt, m->cx[c], m->cy[c], m->dx[c], m->dy[c], -1, 2, f, g, uv);
+            gather_values(w, cnt, 2, f, g);
+            mls_fit_values(w, cnt, m->cx[c], m->cy[c], m->dx[c], m->dy[c], -1, 2, uv);
             st->usc[c] = uv[0];
             st->vsc[c] = uv[1];
             for (ump_idx a = su->of_off[c]; a < su->of_off[c + 1]; a++) {
@@ -1121,7 +1174,7 @@ static void step8_mls_velocity(sol *S)
                     mdx = 0.5 * (mdx + m->dx[m->neigh[fa]]);
                     mdy = 0.5 * (mdy + m->dy[m->neigh[fa]]);
                 }
-                mls_value(w, cnt, m->fx[fa], m->fy[fa], mdx, mdy, fa >= ni ? fa - ni : -1, 2, f, g, uv);
+                mls_fit_values(w, cnt, m->fx[fa], m->fy[fa], mdx, mdy, fa >= ni ? fa - ni : -1, 2, uv);
                 st->flux[fa] = (uv[0] * m->nx[fa] + uv[1] * m->ny[fa]) * m->len[fa]; /* u*_f . A_f, Eq. 20 */
             }
         }
@@ -1224,7 +1277,8 @@ static ump_status step11_manage(sol *S, sol_stats *stats, ump_err *err)
                     work_fail(w, rc, &e);
                     continue;
                 }
-                mls_value(w, cnt, m->cx[c], m->cy[c], m->dx[c], m->dy[c], -1, 1, f, g, &st->Tc[c]);
+                gather_values(w, cnt, 1, f, g);
+                mls_fit_values(w, cnt, m->cx[c], m->cy[c], m->dx[c], m->dy[c], -1, 1, &st->Tc[c]);
             }
         }
         UMP_CALL(work_collect(S, stats, err));
