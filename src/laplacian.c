@@ -154,30 +154,33 @@ static ump_status cpm_coeffs(int dim, const double *const *off, int n, double *a
 static ump_status cpm_coeffs2(const double *restrict h, const double *restrict k, int n, double *restrict a,
                               ump_err *err)
 {
-    double r2max = 0;
-#pragma omp simd reduction(max : r2max)
+    double r2max = 0, r2min = INFINITY;
+#pragma omp simd reduction(max : r2max) reduction(min : r2min)
     for (int j = 0; j < n; j++) {
         double r2 = h[j] * h[j] + k[j] * k[j];
         r2max = r2 > r2max ? r2 : r2max;
+        r2min = r2 < r2min ? r2 : r2min;
     }
     if (!(r2max > 0) || !(r2max < INFINITY))
         return UMP_FAIL(err, UMP_ERR_SINGULAR,
                         "CPM Laplacian: %d neighbours, none at a finite non-zero distance", n);
     double iL = 1 / sqrt(r2max), rmin2 = CPM_COINCIDENT * CPM_COINCIDENT;
+    if (r2min * (iL * iL) < rmin2) { /* a coincident neighbour: the general loop handles it */
+        const double *off[2] = {h, k};
+        return cpm_coeffs(2, off, n, a, err);
+    }
     enum { S20, S11, S02, S30, S21, S12, S03, S40, S31, S22, S13, S04, NS };
     double S[NS];
     int nused = 0;
     double s20 = 0, s11 = 0, s02 = 0, s30 = 0, s21 = 0, s12 = 0, s03 = 0, s40 = 0, s31 = 0, s22 = 0, s13 = 0,
            s04 = 0;
     /* branch-free, so that it vectorises (omp simd; a fixed summation
-     * order, the same bits for any thread count) */
+     * order, the same bits for any thread count); coincident neighbours
+     * went to the general loop above */
 #pragma omp simd reduction(+ : s20, s11, s02, s30, s21, s12, s03, s40, s31, s22, s13, s04)
     for (int j = 0; j < n; j++) {
         double X = h[j] * iL, Y = k[j] * iL, r2 = X * X + Y * Y;
-        /* coincident: no information (and an infinite weight): a_j = 0 */
-        double r2s = r2 >= rmin2 ? r2 : 1;
-        double inv = 1 / (r2s * r2s * r2s);
-        double w2 = r2 >= rmin2 ? inv : 0; /* w_j^2 = 1/r^6 */
+        double w2 = 1 / (r2 * r2 * r2); /* w_j^2 = 1/r^6 */
         double wx = w2 * X, wy = w2 * Y;
         double wxx = wx * X, wxy = wx * Y, wyy = wy * Y;
         double wxxx = wxx * X, wxxy = wxx * Y, wxyy = wxy * Y, wyyy = wyy * Y;
@@ -195,8 +198,7 @@ static ump_status cpm_coeffs2(const double *restrict h, const double *restrict k
         s04 += wyyy * Y;
         a[j] = w2; /* parked until q is known */
     }
-    for (int j = 0; j < n; j++)
-        nused += a[j] != 0;
+    nused = n; /* no coincident neighbour here */
     S[S20] = s20, S[S11] = s11, S[S02] = s02, S[S30] = s30, S[S21] = s21, S[S12] = s12, S[S03] = s03;
     S[S40] = s40, S[S31] = s31, S[S22] = s22, S[S13] = s13, S[S04] = s04;
     if (nused < 5)
@@ -225,7 +227,7 @@ static ump_status cpm_coeffs2(const double *restrict h, const double *restrict k
         q[r] = c2[r] + c4[r];
     double il2 = 1 / r2max; /* a_j = a_hat_j / L^2 */
 #pragma omp simd
-    for (int j = 0; j < n; j++) { /* coincident neighbours have a_j = 0 parked: they stay 0 */
+    for (int j = 0; j < n; j++) {
         double X = h[j] * iL, Y = k[j] * iL;
         double s = q[0] * X + q[1] * Y + q[2] * 0.5 * X * X + q[3] * X * Y + q[4] * 0.5 * Y * Y;
         a[j] *= s * il2;

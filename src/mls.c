@@ -244,3 +244,92 @@ mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx,
     info->rcond = 1;
     return MLS_SHEPARD;
 }
+
+mls_basis mls_gradient(const double *restrict dx, const double *restrict dy, const double *restrict u, int n,
+                       double mean_dx, double mean_dy, double *gx, double *gy, mls_info *info)
+{
+    mls_info dummy;
+    if (!info)
+        info = &dummy;
+    info->basis = MLS_NONE;
+    info->rcond = 0;
+    *gx = *gy = 0;
+    if (n <= 0)
+        return MLS_NONE;
+    double mx = 0, my = 0;
+#pragma omp simd reduction(max : mx, my)
+    for (int j = 0; j < n; j++) {
+        double ax = fabs(dx[j]), ay = fabs(dy[j]);
+        mx = ax > mx ? ax : mx;
+        my = ay > my ? ay : my;
+    }
+    /* Eq. 35's scales, as prepare() */
+    double xm = mx + (mean_dx > 0 && mean_dx < INFINITY ? mean_dx : 0);
+    double ym = my + (mean_dy > 0 && mean_dy < INFINITY ? mean_dy : 0);
+    if (!(xm > 0))
+        xm = ym > 0 ? ym : 1;
+    if (!(ym > 0))
+        ym = xm;
+    double ixm = 1 / xm, iym = 1 / ym;
+    /* one pass: the moments of A (Eq. 30) and B = sum_j w_j u_j R_j (Eq. 31) */
+    double s1 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0, sxxx = 0, sxxy = 0, sxyy = 0, syyy = 0,
+           sx4 = 0, sx3y = 0, sx2y2 = 0, sxy3 = 0, sy4 = 0;
+    double b0 = 0, b1 = 0, b2 = 0, b3 = 0, b4 = 0, b5 = 0;
+#pragma omp simd reduction(+ : s1, sx, sy, sxx, sxy, syy, sxxx, sxxy, sxyy, syyy, sx4, sx3y, sx2y2, sxy3, sy4, \
+                               b0, b1, b2, b3, b4, b5)
+    for (int j = 0; j < n; j++) {
+        double X = dx[j] * ixm, Y = dy[j] * iym;
+        double wj = weight(X, Y);
+        double wx = wj * X, wy = wj * Y;
+        double wxx = wx * X, wxy = wx * Y, wyy = wy * Y;
+        double wxxx = wxx * X, wxxy = wxx * Y, wxyy = wxy * Y, wyyy = wyy * Y;
+        s1 += wj;
+        sx += wx;
+        sy += wy;
+        sxx += wxx;
+        sxy += wxy;
+        syy += wyy;
+        sxxx += wxxx;
+        sxxy += wxxy;
+        sxyy += wxyy;
+        syyy += wyyy;
+        sx4 += wxxx * X;
+        sx3y += wxxx * Y;
+        sx2y2 += wxxy * Y;
+        sxy3 += wxyy * Y;
+        sy4 += wyyy * Y;
+        double uj = u[j];
+        b0 += wj * uj;
+        b1 += wx * uj;
+        b2 += wy * uj;
+        b3 += wxy * uj;
+        b4 += wxx * uj;
+        b5 += wyy * uj;
+    }
+    double m[NMOM] = {s1, sx, sy, sxx, sxy, syy, sxxx, sxxy, sxyy, syyy, sx4, sx3y, sx2y2, sxy3, sy4};
+    double B[6] = {b0, b1, b2, b3, b4, b5};
+    spd_small f;
+    int nb = 0;
+    if (n >= MLS_MIN_QUAD && factor(6, m, &f, &info->rcond))
+        nb = 6;
+    else if (n >= 3 && factor(3, m, &f, &info->rcond))
+        nb = 3;
+    if (!nb) { /* Shepard: no derivative information */
+        info->basis = MLS_SHEPARD;
+        info->rcond = 1;
+        return MLS_SHEPARD;
+    }
+    /* (m2, m3) = rows 1, 2 of A^{-1} B (Eqs. 33-34), A^{-1} = S inv S */
+    double q1[SPD_MAX], q2[SPD_MAX];
+    spd_inv_column(&f, 1, q1); /* A^{-1} is symmetric: column = row */
+    spd_inv_column(&f, 2, q2);
+    double m2 = 0, m3 = 0;
+    for (int i = 0; i < nb; i++) {
+        m2 += q1[i] * B[i];
+        m3 += q2[i] * B[i];
+    }
+    *gx = m2 * ixm;
+    *gy = m3 * iym;
+    info->basis = nb == 6 ? MLS_QUADRATIC : MLS_LINEAR;
+    return info->basis;
+}

@@ -1225,13 +1225,9 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
                 w->k[nn] = m->cy[q] + (su->st_sy ? su->st_sy[a] : 0) - y;
                 w->pv[nn++] = st->p[q];
             }
-            if (mls_weights(w->h, w->k, nn, m->dx[c], m->dy[c], w->c0, w->cx, w->cy, NULL) != MLS_QUADRATIC)
+            double gx, gy;
+            if (mls_gradient(w->h, w->k, w->pv, nn, m->dx[c], m->dy[c], &gx, &gy, NULL) != MLS_QUADRATIC)
                 fb++;
-            double gx = 0, gy = 0;
-            for (int j = 0; j < nn; j++) {
-                gx += w->cx[j] * w->pv[j];
-                gy += w->cy[j] * w->pv[j];
-            }
             P->u[i] = st->us[i] - dt * gx;
             P->v[i] = st->vs[i] - dt * gy;
         }

@@ -65,4 +65,12 @@ typedef struct mls_info {
 mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx, double mean_dy,
                       double *c0, double *cx, double *cy, mls_info *info);
 
+/* The MLS derivative (Eqs. 33-34) of one quantity u [n] at the target,
+ * with the weights, scales and fall-backs of mls_weights (Shepard: 0):
+ * B = sum_j w_j u_j R_j (Eq. 31) is summed in the same pass as the
+ * moments, so no per-sample coefficients are formed. Same numbers as
+ * sum_j cx[j] u_j of mls_weights up to rounding. */
+mls_basis mls_gradient(const double *dx, const double *dy, const double *u, int n, double mean_dx,
+                       double mean_dy, double *gx, double *gy, mls_info *info);
+
 #endif
