@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * fieldio_cloud.c -- the particle cloud as an OpenFOAM v1912 lagrangian
- * cloud that foamToVTK and paraFoam show (OPENFOAM_FORMATS.md section 4):
+ * cloud that foamToVTK and paraFoam show (tests/integration/test_cloud_foamToVTK.sh):
  *   <time>/lagrangian/<cloud>/positions   Cloud<passiveParticle>, "(x y z) celli"
  *   <time>/lagrangian/<cloud>/U           vectorField
  *   <time>/lagrangian/<cloud>/origId      labelField (persistent particle id)

@@ -1,13 +1,13 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * laplacian.c -- Laplacian models on scattered particles in 1-3 D: Section
- * 3.2.1 of seed 000 (Ng, Sheu & Hwang 2016) and seed 001 (Hwang, Ng &
+ * 3.2.1 of [NSH16] (Ng, Sheu & Hwang 2016) and [HNS16] (Hwang, Ng &
  * Sheu 2016).
  *
  * Every model returns the implicit row lap(phi)_i = sum_j a_j (phi_j - phi_i)
- * (Eq. 14 of seed 000 is solved implicitly), so the explicit value and the
+ * (Eq. 14 of [NSH16] is solved implicitly), so the explicit value and the
  * matrix row come from the same numbers.
  *
- * CPM (Koh et al.; seed 000 Eqs. 16-17). Taylor expansion to second order,
+ * CPM (Koh et al.; [NSH16] Eqs. 16-17). Taylor expansion to second order,
  *   phi_j - phi_i ~ p_j . D,  p_j = [x_d ..., x_d^2/2 or x_d x_e ...],
  * (2-D: p_j = [h, k, h^2/2, hk, k^2/2], D = [phi_x, phi_y, phi_xx, phi_xy,
  * phi_yy]) fitted by weighted least squares with weights w_j^2, w_j = 1/r^3:
@@ -21,15 +21,15 @@
  * a_j = a_hat_j / L^2. M_hat is then equilibrated (spd_small.h) and its
  * condition number decides singularity.
  *
- * Kernel models, w = max(r_e/r - 1, 0) (seed 001 Eq. 3), d = dimension:
- *   MPS (Koshizuka; seed 000 Eq. 15): a_j = 2d w_j / sum_j w_j r_j^2.
- *   PS  (Zhang; seed 001 Eq. 2):      a_j = 2d (w_j / r_j^2) / Omega_0,
+ * Kernel models, w = max(r_e/r - 1, 0) ([HNS16] Eq. 3), d = dimension:
+ *   MPS (Koshizuka; [NSH16] Eq. 15): a_j = 2d w_j / sum_j w_j r_j^2.
+ *   PS  (Zhang; [HNS16] Eq. 2):      a_j = 2d (w_j / r_j^2) / Omega_0,
  *       Omega_0 = sum_j w_j (Eq. 5 with p = q = r = 0).
  * Both are exact for quadratics on symmetric lattices only. On an irregular
  * cloud the first moment Omega_2^(1,0) = sum_j w_j h_j / r_j^2 does not
  * vanish, so PS adds the artificial convection u_N phi_x (Eqs. 10, 13) of
  * size O(1/l0): the error grows as the cloud is refined.
- *   IPS (seed 001 Eq. 15): subtract that term with a gradient that is exact
+ *   IPS ([HNS16] Eq. 15): subtract that term with a gradient that is exact
  *       for linear fields, from G <grad phi> = Phi_2^(1) (Eq. 18; 2-D Eq. 19,
  *       3-D Eq. 27), G_de = sum_j w_j x_d x_e / r_j^2:
  *   lap = 2d/Omega_0 [Phi_2^(0) - Omega_2^(1) . G^{-1} Phi_2^(1)]  (Eq. 20,
@@ -235,7 +235,7 @@ static ump_status cpm_coeffs2(const double *restrict h, const double *restrict k
     return UMP_OK;
 }
 
-/* The kernel of MPS, PS and IPS, seed 001 Eq. 3: w = max(r_e/r - 1, 0),
+/* The kernel of MPS, PS and IPS, [HNS16] Eq. 3: w = max(r_e/r - 1, 0),
  * and 0 on the particle itself. */
 static double kernel(double r, double re)
 {
@@ -253,16 +253,16 @@ static ump_status kernel_coeffs(const lap_params *p, int dim, const double *cons
               "%s Laplacian: re_factor = %g, expected > 0", name, ref);
     double re = ref * l0, den = 0;
     int ips = p->model == LAP_IPS;
-    /* Omega sums of seed 001 Eq. 5 (IPS): g = Omega_2^(1), G = Omega_2^(2). */
+    /* Omega sums of [HNS16] Eq. 5 (IPS): g = Omega_2^(1), G = Omega_2^(2). */
     double g[LAP_MAX_DIM] = {0}, G[SPD_MAX][SPD_MAX] = {{0}};
     for (int j = 0; j < n; j++) {
         double r2 = dist2(dim, off, j), r = sqrt(r2), w = kernel(r, re);
         switch (p->model) {
-        case LAP_MPS: /* seed 000 Eq. 15: weights w, normalised by sum w r^2 */
+        case LAP_MPS: /* [NSH16] Eq. 15: weights w, normalised by sum w r^2 */
             a[j] = w;
             den += w * r2;
             break;
-        default: /* PS (seed 001 Eq. 2) and IPS: weights w / r^2, normalised by Omega_0 */
+        default: /* PS ([HNS16] Eq. 2) and IPS: weights w / r^2, normalised by Omega_0 */
             a[j] = w > 0 ? w / r2 : 0;
             den += w;
             for (int d = 0; ips && d < dim; d++) {

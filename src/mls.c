@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * mls.c -- moving-least-squares interpolation weights, Eqs. (27)-(35) of
- * seed 000 (Ng, Sheu & Hwang 2016; Tabbara, Blacker & Belytschko 1994).
+ * [NSH16] (Ng, Sheu & Hwang 2016; Tabbara, Blacker & Belytschko 1994).
  *
  * Workload: one call per mesh face and per centroid every time step
  * (Step 8), with n ~ 10-40 samples from the N1 u N2 stencil. So: no

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * part_search.c -- particle neighbour search through the mesh stencils and
- * particle management (seed 000 Section 3.2.2.2 and Section 4 intro;
- * METHOD.md section 6 step 11).
+ * particle management ([NSH16] Section 3.2.2.2 and Section 4 intro;
+ * docs/METHOD.md section 4 and section 5, Step 11).
  *
  * Neighbour search: the candidates of a point in cell c are the particles
  * binned in c and in N2(c) (mesh2d stencils), plus the boundary particles
@@ -11,7 +11,7 @@
  *
  * Management (Step 11):
  *   UMPPM  -- particles closer than delta < sqrt(alpha) d_c are deleted
- *             (seed 000: "particles which are close to each other are simply
+ *             ([NSH16]: "particles which are close to each other are simply
  *             deleted"; alpha = 0.09 in MPPM, 0.05 also used). The paper does
  *             not say which of the two goes; we keep the one nearer its own
  *             cell centroid (it is the better observation point of its cell),

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * particles.c -- the particle set (struct of arrays), seeding, compaction,
- * per-cell bins and boundary particles (METHOD.md section 4, Step 2 of
- * seed 000 Section 3.3).
+ * per-cell bins and boundary particles (docs/METHOD.md section 4; Step 2 of
+ * Ng, Sheu & Hwang (2016) [NSH16] Section 3.3).
  *
  * Workload: every time step re-locates and re-bins all N particles and the
  * neighbour search reads the bins many times, so the bins are a counting

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
- * polymesh_write.c -- an ascii OpenFOAM polyMesh, as blockMesh writes it
- * (OPENFOAM_FORMATS.md section 1), for meshes made by umppmFoam's tools
- * (e.g. the crossed-triangle periodic meshes of the Taylor-Green case).
+ * polymesh_write.c -- an ascii OpenFOAM polyMesh, as blockMesh writes it,
+ * for meshes made by umppmFoam's tools (e.g. the crossed-triangle periodic
+ * meshes of the Taylor-Green case; OpenFOAM's checkMesh reads them).
  */
 #include "umppm/fieldio.h"
 #include "umppm/polymesh.h"

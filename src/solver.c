@@ -115,9 +115,15 @@ typedef struct sol_setup {
 #define SOL_MAX_VALUES 2 /* quantities one MLS fit interpolates (u, v) */
 typedef struct sol_work {
     size_t cap;
-    double *px, *py;           /* gathered positions (stencil shift applied) */
+    union {                    /* gathered positions (stencil shift applied) */
+        struct { double *px, *py; };
+        double *gpos[PART_DIM];
+    };
     ump_idx *ref;
-    double *h, *k;             /* offsets from the target */
+    union {                    /* offsets from the target */
+        struct { double *h, *k; };
+        double *off[PART_DIM];
+    };
     ump_idx *sref;             /* refs of the samples in h, k order */
     double *c0, *cx, *cy;      /* MLS / Laplacian coefficients */
     double *pv;                /* stencil values (pressure gradient) */
@@ -1387,7 +1393,7 @@ const double *sol_cell_u(const sol *S) { return S->st.uc; }
 const double *sol_cell_v(const sol *S) { return S->st.vc; }
 const double *sol_cell_p(const sol *S) { return S->st.p; }
 
-/* Seed 001 Eqs. 13 and 22 per fluid particle, over the predictor's
+/* [HNS16] Eqs. 13 and 22 per fluid particle, over the predictor's
  * neighbours (the same gather), r_e = re_factor * sqrt(cell area). */
 ump_status sol_particle_quality(sol *S, double *uN, double *tau, size_t *nfail, ump_err *err)
 {

@@ -92,7 +92,7 @@ void fio_write_header(FILE *fp, const char *cls, const char *location,
  * (the caller's last line ends with its own newline). */
 void fio_write_footer(FILE *fp);
 
-/* ---- lagrangian clouds (OPENFOAM_FORMATS.md section 4) ----------------- */
+/* ---- lagrangian clouds (the layout foamToVTK reads; src/fieldio_cloud.c) -- */
 /* Write the particle cloud under <dir>/lagrangian/<cloud>/ (positions with
  * the cell of each particle, U, origId, origProcId) and
  * <dir>/uniform/lagrangian/<cloud>/cloudProperties with "geometry positions;",

@@ -6,19 +6,19 @@
  * its neighbours:  lap(phi)_i = sum_j a_j (phi_j - phi_i),
  * so the explicit value and the implicit matrix row (diagonal -sum_j a_j)
  * come from the same numbers. Offsets x_j - x_i are given per dimension.
- *   LAP_CPM  consistent particle method, Eqs. (16)-(17) of seed 000:
+ *   LAP_CPM  consistent particle method, Eqs. (16)-(17) of Ng, Sheu & Hwang (2016) [NSH16]:
  *            weighted least squares over the second-order Taylor basis
  *            (2, 5, 9 terms in 1-, 2-, 3-D), w_j = 1/r^3. Exact for
  *            quadratic fields on any non-degenerate cloud.
- *   LAP_MPS  Koshizuka's model, seed 000 Eq. (15):
+ *   LAP_MPS  Koshizuka's model, [NSH16] Eq. (15):
  *            a_j = 2d w_j / sum_j w_j r_j^2.
- *   LAP_PS   particle smoothing, seed 001 Eq. (2):
+ *   LAP_PS   particle smoothing, Hwang, Ng & Sheu (2016) [HNS16] Eq. (2):
  *            a_j = 2d (w_j / r_j^2) / sum_j w_j.
- *   LAP_IPS  improved particle smoothing, seed 001 Eqs. (15)-(20), (24),
+ *   LAP_IPS  improved particle smoothing, [HNS16] Eqs. (15)-(20), (24),
  *            (26)-(27): PS minus its artificial convection, with the
  *            gradient from the d x d system of Eq. (18). Exact for linear
  *            fields; quadratics see the effective diffusivity of Eq. (22).
- * MPS, PS and IPS use the kernel w = max(r_e/r - 1, 0) (seed 001 Eq. 3)
+ * MPS, PS and IPS use the kernel w = max(r_e/r - 1, 0) ([HNS16] Eq. 3)
  * with r_e = re_factor * l0. MPS and PS differ only in the weighting
  * (PS is MPS with the kernel w/r^2), and both are inconsistent on irregular
  * clouds: the first moment makes a linear field's Laplacian O(1/l0).
@@ -31,7 +31,7 @@
 typedef enum { LAP_CPM, LAP_MPS, LAP_IPS, LAP_PS } lap_model;
 
 #define LAP_MAX_DIM 3
-/* Default r_e / l0: 2.1 for MPS (Koshizuka), 2.0 for PS and IPS (seed 001,
+/* Default r_e / l0: 2.1 for MPS (Koshizuka), 2.0 for PS and IPS ([HNS16],
  * "r_e = 2 delta"). */
 #define LAP_RE_FACTOR_DEFAULT 2.1
 #define LAP_RE_FACTOR_PS_DEFAULT 2.0
@@ -72,7 +72,7 @@ double lap_value(const double *a, const double *phij, double phii, int n);
 void lap_moments(int dim, const double *const *off, int n, const double *a, double first[3],
                  double second[6]);
 
-/* Particle-distribution quality of seed 001, independent of the model used
+/* Particle-distribution quality of [HNS16], independent of the model used
  * in the flow: the artificial velocity u_N of PS (Eqs. 13-14: PS applied to
  * x, y, z) and the effective diffusivity tau of IPS (Eqs. 22-23: IPS
  * applied to x_d x_e / 2), both with r_e = re_factor * l0 (re_factor 0:

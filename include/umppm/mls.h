@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * mls.h -- moving-least-squares interpolation from scattered samples
- * (module prefix mls_), Eqs. (27)-(35) of seed 000.
+ * (module prefix mls_), Eqs. (27)-(35) of Ng, Sheu & Hwang (2016) [NSH16];
+ * docs/METHOD.md section 3.4.
  *
  * Quadratic basis R = [1 x y xy x^2 y^2] (Eq. 28) in local coordinates
  * centred at the target point (a face centre, a centroid or a particle);

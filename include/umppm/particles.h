@@ -1,6 +1,7 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * particles.h -- fluid and boundary particles on the pressure mesh (module
- * prefix part_), METHOD.md section 4 and Section 3.2.2.2 of seed 000.
+ * prefix part_), docs/METHOD.md section 4 and Section 3.2.2.2 of Ng, Sheu &
+ * Hwang (2016) [NSH16].
  *
  * Struct-of-arrays storage with one grow function. Each fluid particle knows
  * its cell; after every move the particle is re-located by walking from its
@@ -21,10 +22,23 @@
 #include <stdint.h>
 #include "umppm/mesh2d.h"
 
+/* Dimension of the particle arrays (pos[d], vel[d]); the kernels of the
+ * 2-D solver are specialised for it at compile time. */
+#define PART_DIM 2
+
 typedef struct part_set {
     size_t n, cap;
-    double *x, *y;     /* position, in-plane coordinates of mesh2d */
-    double *u, *v;     /* velocity */
+    /* position (in-plane coordinates of mesh2d) and velocity, by name or
+     * by dimension (pos[d], vel[d]: the same arrays, no cost at run time;
+     * a 3-D solver extends PART_DIM instead of adding names) */
+    union {
+        struct { double *x, *y; };
+        double *pos[PART_DIM];
+    };
+    union {
+        struct { double *u, *v; };
+        double *vel[PART_DIM];
+    };
     double *T;         /* temperature (always allocated; unused if isothermal) */
     ump_idx *cell;     /* containing cell */
     int64_t *id;       /* persistent id (origId in the lagrangian cloud) */
@@ -103,8 +117,15 @@ void part_bins_free(part_bins *b);
 /* Boundary particles: one per boundary face (faces ninternal..nfaces-1). */
 typedef struct part_boundary {
     ump_idx n;          /* = m->nfaces - m->ninternal */
-    double *x, *y;      /* face centres */
-    double *u, *v, *T;  /* boundary values, set by the solver each step */
+    union {             /* face centres, by name or dimension */
+        struct { double *x, *y; };
+        double *pos[PART_DIM];
+    };
+    union {             /* boundary velocity, set by the solver each step */
+        struct { double *u, *v; };
+        double *vel[PART_DIM];
+    };
+    double *T;          /* boundary temperature */
     ump_idx *face;      /* 2-D face index */
     ump_idx *off, *idx; /* per cell (owner) CSR of boundary particles [ncells+1] */
 } part_boundary;

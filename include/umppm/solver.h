@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * solver.h -- the UMPPM time step (module prefix sol_): Steps 5-12 of
- * Section 3.3 of seed 000 (Ng, Sheu & Hwang 2016), METHOD.md section 6.
+ * Section 3.3 of Ng, Sheu & Hwang (2016) [NSH16], docs/METHOD.md section 5.
  *
  * Units are OpenFOAM's incompressible ones: kinematic pressure p = P/rho and
  * kinematic viscosity nu, so the results compare directly with icoFoam.
@@ -146,7 +146,7 @@ void sol_buoyant_pressure(const sol *S, ump_idx c, ump_idx f, double *p, double 
 typedef enum { SOL_GRAD_MLS, SOL_GRAD_SNGRAD } sol_grad_method;
 ump_status sol_wall_dTdn(sol *S, ump_idx f, sol_grad_method how, double *dTdn, ump_err *err);
 const part_set *sol_particles(const sol *S);
-/* Particle-distribution quality of seed 001 for every fluid particle:
+/* Particle-distribution quality of [HNS16] for every fluid particle:
  * uN [2n] the artificial velocity of PS (Eq. 13), tau [3n] the effective
  * diffusivity of IPS (Eq. 22) as xx, xy, yy; both with r_e = re_factor
  * (settings; 0: 2.0) times the particle's sqrt(cell area), over the
