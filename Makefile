@@ -7,6 +7,8 @@
 #   make debug      -O0 -g -DUMP_DEBUG build in build/debug
 #   make fuzz       libFuzzer harness for the FoamFile reader (clang)
 #   make deps       install the Debian packages (apt-get, needs root or sudo)
+# Every build uses OpenMP (gcc's -fopenmp/libgomp; clang's libomp for the
+# sanitizer build): OMP_NUM_THREADS sets the solver's threads.
 
 CC      ?= cc
 BUILD   ?= build/release
