@@ -107,7 +107,7 @@ static ump_status reserve_rows(lsolve_rows *k, ump_idx n, int nrhs, ump_err *err
         k->iw = w;
         for (size_t i = k->ncap; i < nc; i++)
             k->iw[i] = -1; /* rows set their marks and clear them again */
-        double *pt = ump_realloc_array(k->part, LSOLVE_MAX_RHS * nblocks((ump_idx)nc, LSOLVE_DOT_BLOCK) + 1,
+        double *pt = ump_realloc_array(k->part, 2 * LSOLVE_MAX_RHS * nblocks((ump_idx)nc, LSOLVE_DOT_BLOCK) + 2,
                                        sizeof *pt);
         UMP_CHECK(pt, err, UMP_ERR_NOMEM, "BiCGSTAB: out of memory for %zu unknowns", nc);
         k->part = pt;
@@ -140,6 +140,79 @@ static void dots(lsolve_rows *k, ump_idx n, int m, double *const *a, double *con
             s += part[(size_t)r * nb + q];
         d[r] = s;
     }
+}
+
+/* Fused passes (one sweep instead of two; the same arithmetic and block
+ * order as the separate loops, so the same bits): */
+
+/* s = r - al v, returns (s, s). */
+static double sub_norm(lsolve_rows *k, ump_idx n, const double *restrict r, double al,
+                       const double *restrict v, double *restrict s)
+{
+    ump_idx nb = (ump_idx)nblocks(n, LSOLVE_DOT_BLOCK);
+    double *part = k->part, sum = 0;
+#pragma omp parallel for schedule(static)
+    for (ump_idx q = 0; q < nb; q++) {
+        ump_idx i0 = q * LSOLVE_DOT_BLOCK, i1 = i0 + LSOLVE_DOT_BLOCK < n ? i0 + LSOLVE_DOT_BLOCK : n;
+        double acc = 0;
+        for (ump_idx i = i0; i < i1; i++) {
+            s[i] = r[i] - al * v[i];
+            acc += s[i] * s[i];
+        }
+        part[q] = acc;
+    }
+    for (ump_idx q = 0; q < nb; q++)
+        sum += part[q];
+    return sum;
+}
+
+/* x += al ph + om sh, r = s - om t, returns (r, r). */
+static double update_norm(lsolve_rows *k, ump_idx n, double al, double om, double *restrict x,
+                          const double *restrict ph, const double *restrict sh, const double *restrict s,
+                          const double *restrict t, double *restrict r)
+{
+    ump_idx nb = (ump_idx)nblocks(n, LSOLVE_DOT_BLOCK);
+    double *part = k->part, sum = 0;
+#pragma omp parallel for schedule(static)
+    for (ump_idx q = 0; q < nb; q++) {
+        ump_idx i0 = q * LSOLVE_DOT_BLOCK, i1 = i0 + LSOLVE_DOT_BLOCK < n ? i0 + LSOLVE_DOT_BLOCK : n;
+        double acc = 0;
+        for (ump_idx i = i0; i < i1; i++) {
+            x[i] += al * ph[i] + om * sh[i];
+            r[i] = s[i] - om * t[i];
+            acc += r[i] * r[i];
+        }
+        part[q] = acc;
+    }
+    for (ump_idx q = 0; q < nb; q++)
+        sum += part[q];
+    return sum;
+}
+
+/* (t, t) and (t, s) in one pass. */
+static void dots_ts(lsolve_rows *k, ump_idx n, const double *restrict t, const double *restrict s,
+                    double *tt, double *ts)
+{
+    ump_idx nb = (ump_idx)nblocks(n, LSOLVE_DOT_BLOCK);
+    double *part = k->part;
+#pragma omp parallel for schedule(static)
+    for (ump_idx q = 0; q < nb; q++) {
+        ump_idx i0 = q * LSOLVE_DOT_BLOCK, i1 = i0 + LSOLVE_DOT_BLOCK < n ? i0 + LSOLVE_DOT_BLOCK : n;
+        double a = 0, b = 0;
+        for (ump_idx i = i0; i < i1; i++) {
+            a += t[i] * t[i];
+            b += t[i] * s[i];
+        }
+        part[2 * q] = a;
+        part[2 * q + 1] = b;
+    }
+    double a = 0, b = 0;
+    for (ump_idx q = 0; q < nb; q++) {
+        a += part[2 * q];
+        b += part[2 * q + 1];
+    }
+    *tt = a;
+    *ts = b;
 }
 
 /* y[r] = A x[r] for r < m: one sweep over A for all systems. */
@@ -343,7 +416,7 @@ ump_status lsolve_rows_setup(lsolve_rows *k, const lsolve_csr *A, lsolve_pc pc, 
 /* ---- BiCGSTAB in lockstep ------------------------------------------------ */
 
 typedef struct sysstate {
-    double bnorm, rho, rho_old, alpha, omega, res;
+    double bnorm, rho, rho_old, alpha, omega, res, snorm2;
     int first, restarts, it, done; /* done: 1 converged, 0 running/maxit, -1 breakdown */
     int active;
 } sysstate;
@@ -399,7 +472,7 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
     sysstate s[LSOLVE_MAX_RHS];
     double *R[LSOLVE_MAX_RHS], *RH[LSOLVE_MAX_RHS], *P[LSOLVE_MAX_RHS], *V[LSOLVE_MAX_RHS],
         *PH[LSOLVE_MAX_RHS], *S[LSOLVE_MAX_RHS], *SH[LSOLVE_MAX_RHS], *T[LSOLVE_MAX_RHS],
-        *X[LSOLVE_MAX_RHS], *B[LSOLVE_MAX_RHS], d[LSOLVE_MAX_RHS], d2[LSOLVE_MAX_RHS];
+        *X[LSOLVE_MAX_RHS], *B[LSOLVE_MAX_RHS], d[LSOLVE_MAX_RHS];
     for (int r = 0; r < nrhs; r++) {
         memset(&st[r], 0, sizeof st[r]);
         memset(&s[r], 0, sizeof s[r]);
@@ -507,10 +580,7 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
                 continue;
             }
             q->alpha = q->rho / d[j];
-            double al = q->alpha, *ss = S[j], *rr = R[j], *vv = V[j];
-#pragma omp parallel for schedule(static)
-            for (ump_idx i = 0; i < n; i++)
-                ss[i] = rr[i] - al * vv[i]; /* s <- r - a v */
+            q->snorm2 = sub_norm(k, n, R[j], q->alpha, V[j], S[j]); /* s <- r - a v, (s, s) */
             q->it++;
             live[ml++] = j;
         }
@@ -525,11 +595,10 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
         }
         if (!m)
             continue;
-        dots(k, n, m, S, S, d); /* |s| */
         ml = 0;
         for (int j = 0; j < m; j++) {
             sysstate *q = &s[a[j]];
-            if (sqrt(d[j]) / q->bnorm <= tol) { /* converged on the half step */
+            if (sqrt(q->snorm2) / q->bnorm <= tol) { /* converged on the half step */
                 double al = q->alpha, *xx = X[j], *ph = PH[j];
 #pragma omp parallel for schedule(static)
                 for (ump_idx i = 0; i < n; i++)
@@ -553,20 +622,14 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
             continue;
         apply_pc(k, A, m, S, SH); /* sh <- M^-1 s */
         spmv(A, m, SH, T);        /* t <- A sh */
-        dots(k, n, m, T, T, d);
-        dots(k, n, m, T, S, d2);
         for (int j = 0; j < m; j++) {
             sysstate *q = &s[a[j]];
-            q->omega = d[j] > 0.0 ? d2[j] / d[j] : 0.0; /* w <- (t, s) / (t, t) */
-            double al = q->alpha, om = q->omega, *xx = X[j], *rr = R[j], *ph = PH[j], *sh = SH[j],
-                   *ss = S[j], *tt = T[j];
-#pragma omp parallel for schedule(static)
-            for (ump_idx i = 0; i < n; i++) {
-                xx[i] += al * ph[i] + om * sh[i]; /* x <- x + a ph + w sh */
-                rr[i] = ss[i] - om * tt[i];       /* r <- s - w t */
-            }
+            double tt, ts;
+            dots_ts(k, n, T[j], S[j], &tt, &ts);
+            q->omega = tt > 0.0 ? ts / tt : 0.0; /* w <- (t, s) / (t, t) */
+            /* x <- x + a ph + w sh, r <- s - w t, and (r, r) */
+            d[j] = update_norm(k, n, q->alpha, q->omega, X[j], PH[j], SH[j], S[j], T[j], R[j]);
         }
-        dots(k, n, m, R, R, d);
         for (int j = 0; j < m; j++) {
             sysstate *q = &s[a[j]];
             q->res = sqrt(d[j]) / q->bnorm;
