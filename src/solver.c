@@ -106,6 +106,10 @@ typedef struct sol_setup {
     ump_idx *st_off, *st_cell;
     double *st_sx, *st_sy;
     ump_idx st_max;            /* largest stencil (cells) */
+    /* the same stencils as runs of consecutive cells with one shift: cells
+     * ru_q0[r] .. ru_q1[r]-1, whose particles are consecutive in the bins */
+    ump_idx *ru_off, *ru_q0, *ru_q1;
+    double *ru_sx, *ru_sy;
     /* faces whose u* is interpolated (not fixed, not symmetry), by owner */
     ump_idx *of_off, *of_face;
 } sol_setup;
@@ -261,7 +265,8 @@ void sol_free(sol **pS)
     ppe_free(&su->pe);
     lsolve_rows_free(&st->kry);
     void *arr[] = {su->u_kind, su->ub, su->vb, su->p_dir, su->prgh_f, su->t_kind, su->tb, su->ghc, su->ghf,
-                   su->st_off, su->st_cell, su->st_sx, su->st_sy, su->of_off, su->of_face, st->p, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
+                   su->st_off, su->st_cell, su->st_sx, su->st_sy, su->ru_off, su->ru_q0, su->ru_q1,
+                   su->ru_sx, su->ru_sy, su->of_off, su->of_face, st->p, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
                    st->av, st->cnt_cell};
@@ -335,7 +340,8 @@ static ump_status work_collect(sol *S, sol_stats *st, ump_err *err)
 }
 
 /* Gather the fluid and boundary particles of cell c's stencil (bins must be
- * current) into w->px, w->py, w->ref, in stencil order; returns the count. */
+ * current) into w->px, w->py, w->ref, run by run of the stencil (per run:
+ * its fluid particles, then its boundary particles); returns the count. */
 static ump_status gather_cell(const sol_setup *su, const sol_state *st, sol_work *w, ump_idx c, size_t *n,
                               ump_err *err)
 {
@@ -344,26 +350,28 @@ static ump_status gather_cell(const sol_setup *su, const sol_state *st, sol_work
     const ump_idx *boff = st->bins.off, *bpoff = st->bp.off, *bpidx = st->bp.idx;
     const size_t *bidx = st->bins.idx;
     size_t cnt = 0;
-    ump_idx a0 = su->st_off[c], a1 = su->st_off[c + 1];
+    ump_idx r0 = su->ru_off[c], r1 = su->ru_off[c + 1];
     size_t need = 0;
-    for (ump_idx a = a0; a < a1; a++) {
-        ump_idx q = su->st_cell[a];
-        need += (size_t)(boff[q + 1] - boff[q]) + (size_t)(bpoff[q + 1] - bpoff[q]);
+    for (ump_idx r = r0; r < r1; r++) {
+        ump_idx q0 = su->ru_q0[r], q1 = su->ru_q1[r];
+        need += (size_t)(boff[q1] - boff[q0]) + (size_t)(bpoff[q1] - bpoff[q0]);
     }
     if (need > w->cap)
         UMP_CALL(work_reserve(w, need, err));
     double *restrict px = w->px, *restrict py = w->py;
     ump_idx *restrict ref = w->ref;
-    for (ump_idx a = a0; a < a1; a++) {
-        ump_idx q = su->st_cell[a];
-        double sx = su->st_sx ? su->st_sx[a] : 0, sy = su->st_sy ? su->st_sy[a] : 0;
-        for (ump_idx k = boff[q]; k < boff[q + 1]; k++) {
+    for (ump_idx r = r0; r < r1; r++) {
+        ump_idx q0 = su->ru_q0[r], q1 = su->ru_q1[r];
+        double sx = su->ru_sx ? su->ru_sx[r] : 0, sy = su->ru_sy ? su->ru_sy[r] : 0;
+        /* the fluid particles of the run's cells, then their boundary
+         * particles: each a contiguous range of the bins */
+        for (ump_idx k = boff[q0]; k < boff[q1]; k++) {
             size_t j = bidx[k];
             px[cnt] = X[j] + sx;
             py[cnt] = Y[j] + sy;
             ref[cnt++] = (ump_idx)j;
         }
-        for (ump_idx k = bpoff[q]; k < bpoff[q + 1]; k++) {
+        for (ump_idx k = bpoff[q0]; k < bpoff[q1]; k++) {
             ump_idx j = bpidx[k];
             px[cnt] = BX[j] + sx;
             py[cnt] = BY[j] + sy;
@@ -618,6 +626,42 @@ static ump_status stencil_build(sol_setup *su, ump_err *err)
         su->st_max = UMP_MAX(su->st_max, (ump_idx)k - su->st_off[c]);
     }
     su->st_off[nc] = (ump_idx)k;
+    /* runs: count -> prefix sum -> fill */
+    if (!(su->ru_off = ump_alloc_array((size_t)nc + 1, sizeof *su->ru_off)))
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the particle stencils");
+    for (int pass = 0; pass < 2; pass++) {
+        size_t nr = 0;
+        for (ump_idx c = 0; c < nc; c++) {
+            if (!pass)
+                su->ru_off[c] = (ump_idx)nr;
+            for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
+                int joins = a > su->st_off[c] && su->st_cell[a] == su->st_cell[a - 1] + 1 &&
+                            (!su->st_sx || (su->st_sx[a] == su->st_sx[a - 1] && su->st_sy[a] == su->st_sy[a - 1]));
+                if (joins) {
+                    if (pass)
+                        su->ru_q1[nr - 1] = su->st_cell[a] + 1;
+                    continue;
+                }
+                if (pass) {
+                    su->ru_q0[nr] = su->st_cell[a];
+                    su->ru_q1[nr] = su->st_cell[a] + 1;
+                    if (su->ru_sx) {
+                        su->ru_sx[nr] = su->st_sx[a];
+                        su->ru_sy[nr] = su->st_sy[a];
+                    }
+                }
+                nr++;
+            }
+        }
+        if (!pass) {
+            su->ru_off[nc] = (ump_idx)nr;
+            if (!(su->ru_q0 = ump_alloc_array(nr + 1, sizeof *su->ru_q0)) ||
+                !(su->ru_q1 = ump_alloc_array(nr + 1, sizeof *su->ru_q1)) ||
+                (su->st_sx && (!(su->ru_sx = ump_alloc_array(nr + 1, sizeof *su->ru_sx)) ||
+                               !(su->ru_sy = ump_alloc_array(nr + 1, sizeof *su->ru_sy)))))
+                return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the particle stencils");
+        }
+    }
     return UMP_OK;
 }
 
@@ -877,10 +921,8 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx c = 0; c < nc; c++) {
         ump_idx cnt = 0;
-        for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
-            ump_idx q = su->st_cell[a];
-            cnt += st->bins.off[q + 1] - st->bins.off[q];
-        }
+        for (ump_idx r = su->ru_off[c]; r < su->ru_off[c + 1]; r++)
+            cnt += st->bins.off[su->ru_q1[r]] - st->bins.off[su->ru_q0[r]];
         st->cnt_cell[c] = cnt;
     }
     /* prefix sum */
