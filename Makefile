@@ -83,9 +83,11 @@ check: deps
 	$(MAKE) BUILD=build/check WERROR=-Werror integration
 	$(MAKE) asan
 
+# -Wno-pass-failed: at -O1 under the sanitizers clang does not vectorise the
+# kernels' `omp simd` loops (a hint, not a requirement).
 asan:
 	$(MAKE) BUILD=build/asan CC=clang WERROR=-Werror OPT="-O1 -g -fno-omit-frame-pointer" \
-	    SAN="-fsanitize=address,undefined -fno-sanitize-recover=all" unit integration
+	    SAN="-fsanitize=address,undefined -fno-sanitize-recover=all -Wno-pass-failed" unit integration
 
 debug:
 	$(MAKE) BUILD=build/debug OPT="-O0 -g -DUMP_DEBUG" all
