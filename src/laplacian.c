@@ -151,7 +151,7 @@ static ump_status cpm_coeffs(int dim, const double *const *off, int n, double *a
  * weighted moments S_ab = sum_j w_j^2 h^a k^b, 2 <= a + b <= 4, and only
  * the one combined column q = M^{-1} (e_hh + e_kk) is applied (Eq. 16:
  * lap = phi_xx + phi_yy). Same numbers as the generic loop up to rounding. */
-static ump_status cpm_coeffs2(const double *restrict h, const double *restrict k, int n, double *restrict a,
+static inline __attribute__((always_inline)) ump_status cpm_coeffs2(const double *restrict h, const double *restrict k, int n, double *restrict a,
                               ump_err *err)
 {
     double r2max = 0, r2min = INFINITY;
@@ -302,6 +302,9 @@ static ump_status kernel_coeffs(const lap_params *p, int dim, const double *cons
     return UMP_OK;
 }
 
+/* AVX2 and baseline clones chosen at load time, as mls_weights (mls.c):
+ * the inlined 2-D CPM kernel's omp simd loops run 4 wide with AVX2. */
+__attribute__((target_clones("avx2", "default")))
 ump_status lap_coeffs_d(const lap_params *p, int dim, const double *const *off, int n, double l0,
                         double *a, ump_err *err)
 {

@@ -50,7 +50,7 @@ enum { M1, MX, MY, MXX, MXY, MYY, MXXX, MXXY, MXYY, MYYY, MX4, MX3Y, MX2Y2, MXY3
 /* Normal matrix of the first nb basis functions R = [1 X Y XY X^2 Y^2]
  * (Eq. 28), A = sum_j w_j R_j R_j^T (Eq. 30), from the moments; its
  * inverse and reciprocal condition number. Returns 1 if usable. */
-static int factor(int nb, const double *m, spd_small *f, double *rcond)
+static inline __attribute__((always_inline)) int factor(int nb, const double *m, spd_small *f, double *rcond)
 {
     double a[SPD_MAX][SPD_MAX];
     a[0][0] = m[M1];  a[0][1] = m[MX];  a[0][2] = m[MY];
@@ -71,7 +71,7 @@ static int factor(int nb, const double *m, spd_small *f, double *rcond)
 /* Per-sample coefficients from the columns q0 (value), qx, qy (derivatives,
  * already divided by x_m, y_m) of A^{-1}: c_j = w_j R_j . q (Eqs. 32-34).
  * The weights are parked in c0 on entry. */
-static void coeffs6(const double *restrict dx, const double *restrict dy, int n, double ixm, double iym,
+static inline __attribute__((always_inline)) void coeffs6(const double *restrict dx, const double *restrict dy, int n, double ixm, double iym,
                     const double *q0, const double *qx, const double *qy, double *restrict c0,
                     double *restrict cx, double *restrict cy)
 {
@@ -103,7 +103,7 @@ static void coeffs6(const double *restrict dx, const double *restrict dy, int n,
     }
 }
 
-static void coeffs3(const double *dx, const double *dy, int n, double ixm, double iym,
+static inline __attribute__((always_inline)) void coeffs3(const double *dx, const double *dy, int n, double ixm, double iym,
                     const double *q0, const double *qx, const double *qy, double *c0, double *cx,
                     double *cy)
 {
@@ -119,7 +119,7 @@ static void coeffs3(const double *dx, const double *dy, int n, double ixm, doubl
 
 /* Columns 0, 1, 2 of A^{-1} (value, d/dX, d/dY), the latter two scaled to
  * physical derivatives (d/dx = (1/x_m) d/dX). */
-static void columns(const spd_small *f, int nb, double ixm, double iym, double *q0, double *qx,
+static inline __attribute__((always_inline)) void columns(const spd_small *f, int nb, double ixm, double iym, double *q0, double *qx,
                     double *qy)
 {
     spd_inv_column(f, 0, q0);
@@ -132,7 +132,7 @@ static void columns(const spd_small *f, int nb, double ixm, double iym, double *
 }
 
 /* Eq. 35's scales and pass 1: weights (parked in w) and the 15 moments. */
-static void prepare(const double *restrict dx, const double *restrict dy, int n, double mean_dx,
+static inline __attribute__((always_inline)) void prepare(const double *restrict dx, const double *restrict dy, int n, double mean_dx,
                     double mean_dy, double *restrict w, double *m, double *pixm, double *piym)
 {
     /* x_m = max|dx_j| + mean dx, y_m likewise (Eq. 35). A non-positive or
@@ -202,6 +202,13 @@ static void prepare(const double *restrict dx, const double *restrict dy, int n,
     *piym = iym;
 }
 
+/* Compiled twice, for AVX2 and for baseline x86-64, chosen at load time
+ * (target_clones, an ifunc): the omp simd loops of the inlined helpers
+ * run 4 samples wide where the CPU has AVX2 (Step 8: 25 % less time).
+ * The partial sums then combine in another fixed order, so results
+ * differ between the two kinds of CPU by rounding only, and never
+ * between runs or thread counts on one machine. */
+__attribute__((target_clones("avx2", "default")))
 mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx, double mean_dy,
                       double *c0, double *cx, double *cy, mls_info *info)
 {
@@ -245,6 +252,8 @@ mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx,
     return MLS_SHEPARD;
 }
 
+/* AVX2 and baseline clones, as mls_weights. */
+__attribute__((target_clones("avx2", "default")))
 mls_basis mls_gradient(const double *restrict dx, const double *restrict dy, const double *restrict u, int n,
                        double mean_dx, double mean_dy, double *gx, double *gy, mls_info *info)
 {
