@@ -304,7 +304,7 @@ static ump_status kernel_coeffs(const lap_params *p, int dim, const double *cons
 
 /* AVX2 and baseline clones chosen at load time, as mls_weights (mls.c):
  * the inlined 2-D CPM kernel's omp simd loops run 4 wide with AVX2. */
-__attribute__((target_clones("avx2", "default")))
+UMP_TARGET_CLONES
 ump_status lap_coeffs_d(const lap_params *p, int dim, const double *const *off, int n, double l0,
                         double *a, ump_err *err)
 {

@@ -23,6 +23,7 @@
  * cy_j = w_j R_j . q_2 / y_m (Eq. 34).
  */
 #include "umppm/mls.h"
+#include "umppm/ump.h"
 
 #include "spd_small.h"
 
@@ -208,7 +209,7 @@ static inline __attribute__((always_inline)) void prepare(const double *restrict
  * The partial sums then combine in another fixed order, so results
  * differ between the two kinds of CPU by rounding only, and never
  * between runs or thread counts on one machine. */
-__attribute__((target_clones("avx2", "default")))
+UMP_TARGET_CLONES
 mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx, double mean_dy,
                       double *c0, double *cx, double *cy, mls_info *info)
 {
@@ -253,7 +254,7 @@ mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx,
 }
 
 /* AVX2 and baseline clones, as mls_weights. */
-__attribute__((target_clones("avx2", "default")))
+UMP_TARGET_CLONES
 mls_basis mls_gradient(const double *restrict dx, const double *restrict dy, const double *restrict u, int n,
                        double mean_dx, double mean_dy, double *gx, double *gy, mls_info *info)
 {

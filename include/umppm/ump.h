@@ -79,6 +79,15 @@ size_t ump_alloc_requested(void);
 #define UMP_PI 3.14159265358979323846
 
 #define UMP_MIN(a, b) ((a) < (b) ? (a) : (b))
+/* Hot kernels compiled for AVX2 and baseline x86-64, one chosen at load
+ * time (gcc's target_clones, an ifunc); elsewhere (other CPUs, clang's
+ * sanitizer build) one baseline version. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define UMP_TARGET_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define UMP_TARGET_CLONES
+#endif
+
 #define UMP_MAX(a, b) ((a) > (b) ? (a) : (b))
 
 #endif
