@@ -460,6 +460,19 @@ static void settle(lsolve_rows *k, const lsolve_csr *A, sysstate *s, const doubl
     s->first = 1;
 }
 
+/* Keep the systems at positions live[0..ml-1] of the running list: the
+ * system numbers a[] and every per-system pointer list move down together.
+ * Returns the new count. */
+static int keep_live(int *a, const int *live, int ml, double **const *lists, int nlists)
+{
+    for (int j = 0; j < ml; j++) { /* live[] ascends: in place is safe */
+        a[j] = a[live[j]];
+        for (int l = 0; l < nlists; l++)
+            lists[l][j] = lists[l][live[j]];
+    }
+    return ml;
+}
+
 ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, const double *const *b,
                                 double *const *x, double tol, int maxit, lsolve_stats *st, ump_err *err)
 {
@@ -473,6 +486,8 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
     double *R[LSOLVE_MAX_RHS], *RH[LSOLVE_MAX_RHS], *P[LSOLVE_MAX_RHS], *V[LSOLVE_MAX_RHS],
         *PH[LSOLVE_MAX_RHS], *S[LSOLVE_MAX_RHS], *SH[LSOLVE_MAX_RHS], *T[LSOLVE_MAX_RHS],
         *X[LSOLVE_MAX_RHS], *B[LSOLVE_MAX_RHS], d[LSOLVE_MAX_RHS];
+    enum { NLISTS = 10 };
+    double **const lists[NLISTS] = {R, RH, P, V, PH, S, SH, T, X, B};
     for (int r = 0; r < nrhs; r++) {
         memset(&st[r], 0, sizeof st[r]);
         memset(&s[r], 0, sizeof s[r]);
@@ -539,21 +554,7 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
             }
             live[ml++] = j;
         }
-        /* compact the pointer lists to the live systems */
-#define COMPACT(L)                             \
-        do {                                   \
-            for (int j_ = 0; j_ < ml; j_++)    \
-                L[j_] = L[live[j_]];           \
-        } while (0)
-        {
-            int aa[LSOLVE_MAX_RHS];
-            for (int j = 0; j < ml; j++)
-                aa[j] = a[live[j]];
-            COMPACT(R); COMPACT(RH); COMPACT(P); COMPACT(V); COMPACT(PH); COMPACT(S); COMPACT(SH);
-            COMPACT(T); COMPACT(X); COMPACT(B);
-            memcpy(a, aa, sizeof(int) * (size_t)ml);
-            m = ml;
-        }
+        m = keep_live(a, live, ml, lists, NLISTS);
         if (!m)
             continue;
         for (int j = 0; j < m; j++) {
@@ -584,15 +585,7 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
             q->it++;
             live[ml++] = j;
         }
-        {
-            int aa[LSOLVE_MAX_RHS];
-            for (int j = 0; j < ml; j++)
-                aa[j] = a[live[j]];
-            COMPACT(R); COMPACT(RH); COMPACT(P); COMPACT(V); COMPACT(PH); COMPACT(S); COMPACT(SH);
-            COMPACT(T); COMPACT(X); COMPACT(B);
-            memcpy(a, aa, sizeof(int) * (size_t)ml);
-            m = ml;
-        }
+        m = keep_live(a, live, ml, lists, NLISTS);
         if (!m)
             continue;
         ml = 0;
@@ -608,16 +601,7 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
             }
             live[ml++] = j;
         }
-        {
-            int aa[LSOLVE_MAX_RHS];
-            for (int j = 0; j < ml; j++)
-                aa[j] = a[live[j]];
-            COMPACT(R); COMPACT(RH); COMPACT(P); COMPACT(V); COMPACT(PH); COMPACT(S); COMPACT(SH);
-            COMPACT(T); COMPACT(X); COMPACT(B);
-            memcpy(a, aa, sizeof(int) * (size_t)ml);
-            m = ml;
-        }
-#undef COMPACT
+        m = keep_live(a, live, ml, lists, NLISTS);
         if (!m)
             continue;
         apply_pc(k, A, m, S, SH); /* sh <- M^-1 s */

@@ -132,14 +132,14 @@ static inline __attribute__((always_inline)) void columns(const spd_small *f, in
     }
 }
 
-/* Eq. 35's scales and pass 1: weights (parked in w) and the 15 moments. */
-static inline __attribute__((always_inline)) void prepare(const double *restrict dx, const double *restrict dy, int n, double mean_dx,
-                    double mean_dy, double *restrict w, double *m, double *pixm, double *piym)
+/* Eq. 35's scales 1/x_m, 1/y_m: x_m = max|dx_j| + mean dx, y_m likewise. A
+ * non-positive or non-finite mean counts as 0; a zero extent (all samples
+ * on one line through the target) borrows the other one, so X, Y stay
+ * finite and the degeneracy shows up as a singular normal matrix instead. */
+static inline __attribute__((always_inline)) void scales(const double *restrict dx, const double *restrict dy,
+                                                         int n, double mean_dx, double mean_dy, double *ixm,
+                                                         double *iym)
 {
-    /* x_m = max|dx_j| + mean dx, y_m likewise (Eq. 35). A non-positive or
-     * non-finite mean counts as 0; a zero extent (all samples on one line
-     * through the target) borrows the other one, so X, Y stay finite and the
-     * degeneracy shows up as a singular normal matrix instead. */
     double mx = 0, my = 0;
 #pragma omp simd reduction(max : mx, my)
     for (int j = 0; j < n; j++) {
@@ -153,7 +153,16 @@ static inline __attribute__((always_inline)) void prepare(const double *restrict
         xm = ym > 0 ? ym : 1;
     if (!(ym > 0))
         ym = xm;
-    double ixm = 1 / xm, iym = 1 / ym;
+    *ixm = 1 / xm;
+    *iym = 1 / ym;
+}
+
+/* Eq. 35's scales and pass 1: weights (parked in w) and the 15 moments. */
+static inline __attribute__((always_inline)) void prepare(const double *restrict dx, const double *restrict dy, int n, double mean_dx,
+                    double mean_dy, double *restrict w, double *m, double *pixm, double *piym)
+{
+    double ixm, iym;
+    scales(dx, dy, n, mean_dx, mean_dy, &ixm, &iym);
     /* scalar accumulators: they stay in registers */
     double s1 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0, sxxx = 0, sxxy = 0, sxyy = 0, syyy = 0,
            sx4 = 0, sx3y = 0, sx2y2 = 0, sxy3 = 0, sy4 = 0;
@@ -266,21 +275,8 @@ mls_basis mls_gradient(const double *restrict dx, const double *restrict dy, con
     *gx = *gy = 0;
     if (n <= 0)
         return MLS_NONE;
-    double mx = 0, my = 0;
-#pragma omp simd reduction(max : mx, my)
-    for (int j = 0; j < n; j++) {
-        double ax = fabs(dx[j]), ay = fabs(dy[j]);
-        mx = ax > mx ? ax : mx;
-        my = ay > my ? ay : my;
-    }
-    /* Eq. 35's scales, as prepare() */
-    double xm = mx + (mean_dx > 0 && mean_dx < INFINITY ? mean_dx : 0);
-    double ym = my + (mean_dy > 0 && mean_dy < INFINITY ? mean_dy : 0);
-    if (!(xm > 0))
-        xm = ym > 0 ? ym : 1;
-    if (!(ym > 0))
-        ym = xm;
-    double ixm = 1 / xm, iym = 1 / ym;
+    double ixm, iym;
+    scales(dx, dy, n, mean_dx, mean_dy, &ixm, &iym);
     /* one pass: the moments of A (Eq. 30) and B = sum_j w_j u_j R_j (Eq. 31) */
     double s1 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0, sxxx = 0, sxxy = 0, sxyy = 0, syyy = 0,
            sx4 = 0, sx3y = 0, sx2y2 = 0, sxy3 = 0, sy4 = 0;

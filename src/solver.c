@@ -407,6 +407,20 @@ static int offsets(sol_work *w, size_t n, double x, double y, ump_idx skip_bface
     return m;
 }
 
+/* Offsets from fluid particle self at (x, y) of every gathered sample but
+ * itself, into w->h, w->k (no sample cap: the Laplacian rows take all);
+ * returns the count. */
+static int offsets_but(sol_work *w, size_t n, ump_idx self, double x, double y)
+{
+    int m = 0;
+    for (size_t j = 0; j < n; j++)
+        if (w->ref[j] != self) {
+            w->h[m] = w->px[j] - x;
+            w->k[m++] = w->py[j] - y;
+        }
+    return m;
+}
+
 /* sum_j c_j value_j of a fluid quantity f and a boundary quantity g. */
 static inline double apply(const double *restrict c, const ump_idx *restrict ref, int n,
                            const double *restrict f, const double *restrict g)
@@ -966,12 +980,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                 work_fail(w, rc, &e);
                 continue;
             }
-            int nn = 0;
-            for (size_t j = 0; j < cnt; j++) /* every neighbour but itself (no sample cap here) */
-                if (w->ref[j] != (ump_idx)i) {
-                    w->h[nn] = w->px[j] - P->x[i];
-                    w->k[nn++] = w->py[j] - P->y[i];
-                }
+            int nn = offsets_but(w, cnt, (ump_idx)i, P->x[i], P->y[i]);
             double l0 = sqrt(m->area[c]);
             if (lap_coeffs(&set->lap, w->h, w->k, nn, l0, w->c0, &e) != UMP_OK) {
                 w->lap_fallbacks++;
@@ -1450,12 +1459,7 @@ ump_status sol_particle_quality(sol *S, double *uN, double *tau, size_t *nfail, 
         size_t cnt;
         ump_idx c = P->cell[i];
         UMP_CALL(gather_cell(su, st, w, c, &cnt, err));
-        int nn = 0;
-        for (size_t j = 0; j < cnt; j++)
-            if (w->ref[j] != (ump_idx)i) {
-                w->h[nn] = w->px[j] - P->x[i];
-                w->k[nn++] = w->py[j] - P->y[i];
-            }
+        int nn = offsets_but(w, cnt, (ump_idx)i, P->x[i], P->y[i]);
         const double *off[2] = {w->h, w->k};
         lap_quality q;
         ump_err lerr;
