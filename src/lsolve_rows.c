@@ -215,49 +215,63 @@ static void dots_ts(lsolve_rows *k, ump_idx n, const double *restrict t, const d
     *ts = b;
 }
 
-/* y[r] = A x[r] for r < m: one sweep over A for all systems. */
+/* y[r] = A x[r], r < m, one sweep over A for all systems. Each row's products are summed in four partial
+ * sums (entry p goes to sum p mod 4, combined as (s0 + s1) + (s2 + s3)):
+ * four independent addition chains instead of one, which bound the loop
+ * by the adder's latency (a row has ~25 entries on quads, ~56 on
+ * triangles). The order is the same for every m, so systems solved in
+ * lockstep keep exactly the iterates of separate solves, and it depends
+ * on the row only, so any thread count gives the same bits. */
+static inline __attribute__((always_inline)) void row_sum4(const lsolve_csr *A, ump_idx i, int nr,
+                                                          const double *const *x, double s[][4])
+{
+    const ump_idx *restrict ci = A->ci;
+    const double *restrict v = A->v;
+    ump_idx p = A->rp[i], e = A->rp[i + 1];
+    for (; p + 4 <= e; p += 4) {
+        ump_idx c0 = ci[p], c1 = ci[p + 1], c2 = ci[p + 2], c3 = ci[p + 3];
+        for (int r = 0; r < nr; r++) {
+            s[r][0] += v[p] * x[r][c0];
+            s[r][1] += v[p + 1] * x[r][c1];
+            s[r][2] += v[p + 2] * x[r][c2];
+            s[r][3] += v[p + 3] * x[r][c3];
+        }
+    }
+    for (int q = 0; p < e; p++, q++)
+        for (int r = 0; r < nr; r++)
+            s[r][q] += v[p] * x[r][ci[p]];
+}
+
 static void spmv(const lsolve_csr *A, int m, double *const *x, double *const *y)
 {
-    const ump_idx n = A->n, *rp = A->rp, *ci = A->ci;
-    const double *v = A->v;
+    const ump_idx n = A->n;
     if (m == 1) {
-        const double *x0 = x[0];
-        double *y0 = y[0];
+        const double *xr[1] = {x[0]};
 #pragma omp parallel for schedule(static)
         for (ump_idx i = 0; i < n; i++) {
-            double s = 0;
-            for (ump_idx p = rp[i]; p < rp[i + 1]; p++)
-                s += v[p] * x0[ci[p]];
-            y0[i] = s;
+            double s[1][4] = {{0, 0, 0, 0}};
+            row_sum4(A, i, 1, xr, s);
+            y[0][i] = (s[0][0] + s[0][1]) + (s[0][2] + s[0][3]);
         }
         return;
     }
     if (m == 2) {
-        const double *x0 = x[0], *x1 = x[1];
-        double *y0 = y[0], *y1 = y[1];
+        const double *xr[2] = {x[0], x[1]};
 #pragma omp parallel for schedule(static)
         for (ump_idx i = 0; i < n; i++) {
-            double s0 = 0, s1 = 0;
-            for (ump_idx p = rp[i]; p < rp[i + 1]; p++) {
-                ump_idx c = ci[p];
-                s0 += v[p] * x0[c];
-                s1 += v[p] * x1[c];
-            }
-            y0[i] = s0;
-            y1[i] = s1;
+            double s[2][4] = {{0, 0, 0, 0}, {0, 0, 0, 0}};
+            row_sum4(A, i, 2, xr, s);
+            y[0][i] = (s[0][0] + s[0][1]) + (s[0][2] + s[0][3]);
+            y[1][i] = (s[1][0] + s[1][1]) + (s[1][2] + s[1][3]);
         }
         return;
     }
 #pragma omp parallel for schedule(static)
     for (ump_idx i = 0; i < n; i++) {
-        double s[LSOLVE_MAX_RHS] = {0};
-        for (ump_idx p = rp[i]; p < rp[i + 1]; p++) {
-            ump_idx c = ci[p];
-            for (int r = 0; r < m; r++)
-                s[r] += v[p] * x[r][c];
-        }
+        double s[LSOLVE_MAX_RHS][4] = {{0}};
+        row_sum4(A, i, m, (const double *const *)x, s);
         for (int r = 0; r < m; r++)
-            y[r][i] = s[r];
+            y[r][i] = (s[r][0] + s[r][1]) + (s[r][2] + s[r][3]);
     }
 }
 

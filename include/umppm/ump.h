@@ -83,7 +83,7 @@ size_t ump_alloc_requested(void);
  * time (gcc's target_clones, an ifunc); elsewhere (other CPUs, clang's
  * sanitizer build) one baseline version. */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
-#define UMP_TARGET_CLONES __attribute__((target_clones("avx2", "default")))
+#define UMP_TARGET_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
 #else
 #define UMP_TARGET_CLONES
 #endif
