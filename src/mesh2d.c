@@ -634,6 +634,24 @@ static void closest_image(const lattice *L, double dx, double dy, double *sx, do
  * iidx[ioff[o] .. ioff[o+1]-1]. Two passes (count, then fill) with a stamp
  * per cell in mark [nc] (any contents on entry). off [nc+1] is filled, *out
  * allocated. */
+/* Ascending sort of a stencil: insertion sort up to 32 entries (a cell's
+ * N1/N2 has ~9-60; qsort's comparator calls were a third of the mesh
+ * set-up), qsort beyond, so a vertex shared by many cells stays
+ * O(k log k). */
+static void sort_idx(ump_idx *a, ump_idx k)
+{
+    if (k > 32) {
+        qsort(a, (size_t)k, sizeof *a, cmp_idx);
+        return;
+    }
+    for (ump_idx i = 1; i < k; i++) {
+        ump_idx v = a[i], j = i;
+        for (; j > 0 && a[j - 1] > v; j--)
+            a[j] = a[j - 1];
+        a[j] = v;
+    }
+}
+
 static ump_status stencil_union(ump_idx nc, const ump_idx *ooff, const ump_idx *oidx, const ump_idx *omap,
                                 const ump_idx *ioff, const ump_idx *iidx, int with_outer, ump_idx *mark,
                                 ump_idx *off, ump_idx **out)
@@ -667,7 +685,7 @@ static ump_status stencil_union(ump_idx nc, const ump_idx *ooff, const ump_idx *
             if (!pass)
                 off[c + 1] = off[c] + cnt;
             else
-                qsort(list + base, (size_t)cnt, sizeof(ump_idx), cmp_idx);
+                sort_idx(list + base, cnt);
         }
         if (!pass && !(list = ump_alloc_array((size_t)off[nc], sizeof *list)))
             return UMP_ERR_NOMEM;
