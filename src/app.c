@@ -219,6 +219,31 @@ done:
     return rc;
 }
 
+/* phi: the corrected face fluxes of the last step over the polyMesh faces
+ * (2-D flux per unit thickness times the thickness, signed by the polyMesh
+ * face's own orientation; both faces of a cyclic pair). */
+static ump_status write_phi(app *a, const char *dir, const char *tname, const fio_format *fmt, ump_err *err)
+{
+    const mesh2d *m = a->m;
+    const pmesh *pm = a->pm;
+    const double *flux = sol_face_flux(a->S);
+    double thick = m->zmax - m->zmin;
+    double *phi = ump_alloc_array((size_t)pm->nfaces, sizeof *phi);
+    if (!phi)
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "writing phi: out of memory");
+    for (ump_idx F = 0; F < pm->nfaces; F++)
+        phi[F] = 0;
+    for (ump_idx f = 0; f < m->nfaces; f++) {
+        ump_idx F[2] = {m->face_pm[f], f < m->ninternal ? m->face_pm2[f] : -1};
+        for (int k = 0; k < 2; k++)
+            if (F[k] >= 0)
+                phi[F[k]] = (pm->owner[F[k]] == m->owner[f] ? 1 : -1) * flux[f] * thick;
+    }
+    ump_status rc = fio_write_phi(dir, tname, pm, phi, fmt, err);
+    free(phi);
+    return rc;
+}
+
 static ump_status write_time(app *a, const rt_time *t, ump_err *err)
 {
     fio_timedir td;
@@ -242,6 +267,7 @@ static ump_status write_time(app *a, const rt_time *t, ump_err *err)
         (rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->p, &fmt, err)) != UMP_OK ||
         (a->T && (rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->T, &fmt, err)) != UMP_OK) ||
         (a->T && (rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->prgh, &fmt, err)) != UMP_OK) ||
+        (rc = write_phi(a, td.tmp_dir, t->name, &fmt, err)) != UMP_OK ||
         (rc = fio_write_cloud(td.tmp_dir, t->name, a->um.cloud_name, P->n, pos, vel, P->cell, P->id,
                               a->ctl.write_precision, err)) != UMP_OK ||
         (a->T && (rc = fio_write_cloud_field(td.tmp_dir, t->name, a->um.cloud_name, "T", 1, P->n, P->T,
@@ -605,6 +631,7 @@ ump_status app_run(const char *case_dir, ump_err *err)
     }
     printf("\nStarting time loop\n\n");
     long step = 0;
+    double cont_cumulative = 0;
     double stage_cpu[SOL_NSTAGES] = {0}, stage_wall[SOL_NSTAGES] = {0};
     if ((rc = fo_setup(&a, err)) != UMP_OK || (rc = run_functions(&a, &t, 0, tname, err)) != UMP_OK)
         goto done;
@@ -636,9 +663,14 @@ ump_status app_run(const char *case_dir, ump_err *err)
         if (st.lap_fallbacks || st.mls_fallbacks)
             printf("Fallbacks: %d particle Laplacians (MPS), %d MLS fits (linear/Shepard)\n",
                    st.lap_fallbacks, st.mls_fallbacks);
-        printf("Direct (factorized once):  Solving for p\n");
-        printf("time step continuity errors : sum local = %g, global = %g, max = %g\n", st.cont_local,
-               st.cont_global, st.cont_max);
+        /* OpenFOAM's solver-line form (foamLog parses it): the direct solve,
+         * factorized once, is one "iteration" */
+        printf("%s:  Solving for %s, Initial residual = %g, Final residual = %g, No Iterations 1\n",
+               st.p_solver, a.bu.on ? "p_rgh" : "p", st.p_res0, st.p_res);
+        cont_cumulative += st.cont_global;
+        printf("time step continuity errors : sum local = %g, global = %g, cumulative = %g\n",
+               st.cont_local, st.cont_global, cont_cumulative);
+        printf("time step continuity errors : max = %g\n", st.cont_max);
         if (!finite_fields(&a)) {
             rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: the solution diverged at time %s (NaN or inf); "
                           "reduce deltaT or maxCo", case_dir, t.name);

@@ -588,6 +588,63 @@ ump_status fio_write_field(const char *dir, const char *location, const pmesh *p
     return UMP_OK;
 }
 
+ump_status fio_write_phi(const char *dir, const char *location, const pmesh *pm, const double *phi,
+                         const fio_format *fmt, ump_err *err)
+{
+    static const fio_format def = {0, 6, 0};
+    UMP_CHECK(dir && *dir && pm && phi, err, UMP_ERR_INPUT, "fio_write_phi: missing argument");
+    if (!fmt)
+        fmt = &def;
+    int prec = fmt->precision > 0 ? fmt->precision : 6;
+    int gz = fmt->compress && !fmt->binary;
+    char path[4200], other[4200];
+    int n1 = snprintf(path, sizeof path, "%s/phi%s", dir, gz ? ".gz" : "");
+    int n2 = snprintf(other, sizeof other, "%s/phi%s", dir, gz ? "" : ".gz");
+    UMP_CHECK(n1 > 0 && n2 > 0 && (size_t)n1 < sizeof path && (size_t)n2 < sizeof other, err,
+              UMP_ERR_INPUT, "%s: path too long", dir);
+    sink *s = malloc(sizeof *s);
+    if (!s)
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+    if (sink_open(s, path, gz) != 0) {
+        int e = errno;
+        free(s);
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot open for writing: %s", path, strerror(e));
+    }
+    put_header(s, "surfaceScalarField", location, "phi", fmt->binary);
+    put_key(s, 0, "dimensions");
+    sink_puts(s, "[0 3 -1 0 0 0 0];\n");
+    put_key(s, 0, "oriented");
+    sink_puts(s, "oriented;\n\n\n");
+    put_key(s, 0, "internalField");
+    put_field_value(s, phi, pm->ninternal, 1, fmt->binary, prec);
+    sink_puts(s, "\nboundaryField\n{\n");
+    for (int i = 0; i < pm->npatches; i++) {
+        const pmesh_patch *pp = &pm->patch[i];
+        sink_printf(s, "    %s\n    {\n", pp->name);
+        put_key(s, 8, "type");
+        sink_puts(s, pp->kind == PMESH_EMPTY ? "empty;\n" : pp->kind == PMESH_CYCLIC ? "cyclic;\n" : "calculated;\n");
+        put_key(s, 8, "value");
+        if (pp->kind == PMESH_EMPTY)
+            put_field_value(s, phi, 0, 1, fmt->binary, prec);
+        else
+            put_field_value(s, phi + pp->start, pp->n, 1, fmt->binary, prec);
+        sink_puts(s, "    }\n");
+    }
+    sink_puts(s, "}\n");
+    put_footer(s);
+    errno = 0;
+    if (sink_close(s) != 0) {
+        int e = errno;
+        free(s);
+        remove(path);
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: write failed: %s", path, e ? strerror(e) : "short write");
+    }
+    free(s);
+    if (remove(other) != 0 && errno != ENOENT)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot remove stale file: %s", other, strerror(errno));
+    return UMP_OK;
+}
+
 ump_status fio_write_uniform_time(const char *dir, const char *location,
                                   double value, const char *name, long index,
                                   double deltaT, double deltaT0,

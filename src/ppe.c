@@ -55,6 +55,8 @@ void ppe_free(ppe **pP)
     free(P->dirichlet);
     free(P->bd_coef);
     free(P->rhs);
+    free(P->ax);
+    free(P->rowsum);
     free(P->fop_off);
     free(P->fop_col);
     free(P->fop_val);
@@ -331,6 +333,40 @@ fail:
     return rc;
 }
 
+/* OpenFOAM's normalised residual of A x = b (lduMatrix::solver::normFactor):
+ * sum|b - A x| / (sum(|A x - A xbar| + |b - A xbar|) + 1e-20), xbar the
+ * mean of x, A xbar = xbar times the row sums; 1 for x = 0 and b != 0 as in
+ * OpenFOAM's first solve. Two passes over A a step (the log line). */
+static ump_status residual(ppe *P, const double *b, const double *x, double *out, ump_err *err)
+{
+    ump_idx n = P->m->ncells;
+    if (!P->ax) {
+        ALLOC(P->ax, n);
+        ALLOC(P->rowsum, n);
+        UMP_CHECK(P->ax && P->rowsum, err, UMP_ERR_NOMEM, "%s: out of memory for the PPE residual",
+                  mesh_name(P->m));
+        for (ump_idx i = 0; i < n; i++)
+            P->rowsum[i] = 0;
+        const lsolve_mat *A = P->A;
+        for (ump_idx j = 0; j < n; j++)
+            for (ump_idx k = A->Ap[j]; k < A->Ap[j + 1]; k++)
+                P->rowsum[A->Ai[k]] += A->Ax[k];
+    }
+    lsolve_mat_mult(P->A, x, P->ax);
+    double xbar = 0;
+    for (ump_idx i = 0; i < n; i++)
+        xbar += x[i];
+    xbar /= n;
+    double num = 0, den = 0;
+    for (ump_idx i = 0; i < n; i++) {
+        double ar = xbar * P->rowsum[i];
+        num += fabs(b[i] - P->ax[i]);
+        den += fabs(P->ax[i] - ar) + fabs(b[i] - ar);
+    }
+    *out = num / (den + 1e-20);
+    return UMP_OK;
+}
+
 ump_status ppe_solve(ppe *P, const double *flux, double dt, const double *pf, double *p, ump_err *err)
 {
     const mesh2d *m = P->m;
@@ -358,7 +394,9 @@ ump_status ppe_solve(ppe *P, const double *flux, double dt, const double *pf, do
         for (ump_idx k = 0; k < P->nref; k++)
             b[P->ref_row[k]] -= P->ref_a[k] * P->ref_value;
     }
-    return lsolve_solve(P->fac, b, p, err);
+    UMP_CALL(residual(P, b, p, &P->res0, err));
+    UMP_CALL(lsolve_solve(P->fac, b, p, err));
+    return residual(P, b, p, &P->res, err);
 }
 
 void ppe_face_gradient_flux(const ppe *P, const double *p, const double *pf, double *gflux)

@@ -1411,6 +1411,9 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     UMP_CALL(work_collect(S, stats, err));
     stage_mark(&clk, stats, SOL_STAGE_MLS);
     UMP_CALL(step9_pressure(S, dt, err));
+    stats->p_res0 = S->su.pe->res0;
+    stats->p_res = S->su.pe->res;
+    stats->p_solver = lsolve_name(S->su.pe->fac);
     stage_mark(&clk, stats, SOL_STAGE_PPE);
     step10_correct(S, dt, stats);
     stage_mark(&clk, stats, SOL_STAGE_CORRECT);
@@ -1443,6 +1446,7 @@ void sol_courant(const sol *S, double dt, double *mean, double *max)
 const double *sol_cell_u(const sol *S) { return S->st.uc; }
 const double *sol_cell_v(const sol *S) { return S->st.vc; }
 const double *sol_cell_p(const sol *S) { return S->st.p; }
+const double *sol_face_flux(const sol *S) { return S->st.flux; }
 
 /* [HNS16] Eqs. 13 and 22 per fluid particle, over the predictor's
  * neighbours (the same gather), r_e = re_factor * sqrt(cell area). */

@@ -48,6 +48,16 @@ ump_status fio_read_field(const char *path, const pmesh *pm, int ncomp,
 ump_status fio_write_field(const char *dir, const char *location, const pmesh *pm,
                            const fld_field *f, const fio_format *fmt, ump_err *err);
 
+/* <dir>/phi, the face fluxes as OpenFOAM's surfaceScalarField (dimensions
+ * [0 3 -1 0 0 0 0], "oriented oriented;"): phi [pm->nfaces] in m^3/s over
+ * each polyMesh face, oriented by its normal (owner to neighbour, outwards on
+ * patches); internalField the internal faces, each patch its faces (empty
+ * patches: "value nonuniform 0();", cyclic patches type cyclic, the others
+ * calculated; uniform when all values are equal, as Field::writeEntry). fmt
+ * as fio_write_field. */
+ump_status fio_write_phi(const char *dir, const char *location, const pmesh *pm, const double *phi,
+                         const fio_format *fmt, ump_err *err);
+
 /* <dir>/uniform/time, always ascii and plain, as OpenFOAM writes it:
  * value with 18 digits in the timeFormat (time_format as
  * case_control.time_format_fixed: 0 general %.18g, 1 fixed %.18f,

@@ -66,6 +66,11 @@ typedef struct ppe {
     ump_idx *ref_row;         /* [nref] rows i != ref_cell */
     double *ref_a;            /* [nref] original A(i, ref_cell) */
     double ref_diag;          /* A(ref_cell, ref_cell) */
+    /* OpenFOAM's normalised residuals of the last ppe_solve's system (its
+     * log line): before the solve, at the incoming p (the previous step's),
+     * and after it */
+    double res0, res;
+    double *ax, *rowsum;      /* [ncells] workspace, row sums of A (NULL until used) */
 } ppe;
 
 /* dirichlet [m->nfaces] (may be NULL: none) marks faces with prescribed p

@@ -76,6 +76,9 @@ typedef struct sol_stats {
     size_t np;                   /* fluid particles after the step */
     size_t added, deleted, left; /* management and boundary removals */
     lsolve_stats pred[3];        /* predictor solves (u, v; T if buoyant) */
+    double p_res0, p_res;        /* PPE: OpenFOAM-normalised residual before and
+                                    after the direct solve */
+    const char *p_solver;        /* the direct solver's name (UMFPACK, ...) */
     int lap_fallbacks;           /* particles whose CPM matrix was singular */
     int mls_fallbacks;           /* MLS fits that fell back to linear/Shepard */
     double cont_local, cont_global, cont_max; /* continuity after correction:
@@ -122,6 +125,10 @@ void sol_courant(const sol *S, double dt, double *mean, double *max);
 const double *sol_cell_u(const sol *S);
 const double *sol_cell_v(const sol *S);
 const double *sol_cell_p(const sol *S);
+/* Face fluxes u_f . A_f per unit thickness [nfaces] after the last step's
+ * correction (Eq. 20 with the new pressure; zero before the first step),
+ * oriented owner to neighbour, outwards on boundary faces. */
+const double *sol_face_flux(const sol *S);
 /* Boundary-face values for writing: velocity and pressure on 2-D face f
  * (f >= ninternal). */
 void sol_face_values(const sol *S, ump_idx f, double *u, double *v, double *p);
