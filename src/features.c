@@ -71,12 +71,23 @@ static ump_status check_multiphase(const char *case_dir, const char *tname, ump_
     UMP_CALL(read_optional(case_dir, "constant/transportProperties", &f, err));
     const foam_entry *e = f ? foam_dict_find(f->dict, "phases", 0) : NULL;
     if (e) {
-        char w[128];
+        char w[256] = "";
+        for (size_t i = 0; !e->dict && i < e->ntok && strlen(w) < 120; i++) {
+            char t[64];
+            const foam_token *k = &e->tok[i];
+            if (k->type == FOAM_TOK_WORD || k->type == FOAM_TOK_STRING)
+                snprintf(t, sizeof t, "%s", k->v.str);
+            else if (k->type == FOAM_TOK_PUNCT)
+                snprintf(t, sizeof t, "%c", k->v.punct);
+            else
+                foam_tok_str(k, t, sizeof t);
+            size_t o = strlen(w);
+            snprintf(w + o, sizeof w - o, "%s%s", o && k->type != FOAM_TOK_PUNCT && w[o - 1] != '(' ? " " : "", t);
+        }
         ump_status rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                                 "%s:%d: entry 'phases' (%s%s): multiphase flow is not implemented by "
+                                 "%s:%d: entry 'phases' %s: multiphase flow is not implemented by "
                                  "umppmFoam, which solves one incompressible phase; use interFoam or "
-                                 "multiphaseInterFoam", e->file, e->line, first_word(e, w, sizeof w),
-                                 e->ntok > 1 ? " ..." : "");
+                                 "multiphaseInterFoam", e->file, e->line, e->dict ? "{ ... }" : w);
         foam_file_free(&f);
         return rc;
     }
