@@ -19,6 +19,7 @@
  */
 #include "umppm/app.h"
 #include "umppm/case.h"
+#include "umppm/features.h"
 #include "umppm/field.h"
 #include "umppm/foam.h"
 #include "umppm/fieldio.h"
@@ -50,6 +51,8 @@ typedef struct app {
     double *fo_dTdn, *fo_Tf;        /* per-face scratch [fo_cap] */
     double *fo_val;                 /* [3 * FOB_MAX_FIELDS * fo_cap] */
     size_t fo_cap;                  /* the largest function-object patch */
+    ump_idx p_ref_point_cell;       /* the cell holding pRefPoint, if given */
+    char ddt[128];                  /* the ddt scheme of U (system/fvSchemes) */
     char **written;          /* purgeWrite bookkeeping */
     int nwritten;
 } app;
@@ -106,20 +109,8 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
         s->t_ref = a->tr.TRef;
         s->kappa = a->tr.nu / a->tr.Pr; /* alphaEff = nu/Pr + alphat, alphat = 0 (laminar) */
     }
-    if (a->so.has_p_ref_point) {
-        /* the cell containing pRefPoint */
-        double X = a->so.p_ref_point[a->m->ax[0]], Y = a->so.p_ref_point[a->m->ax[1]];
-        ump_idx best = -1;
-        double bd = INFINITY;
-        for (ump_idx c = 0; c < a->m->ncells; c++) {
-            double d = hypot(a->m->cx[c] - X, a->m->cy[c] - Y);
-            if (d < bd) {
-                bd = d;
-                best = c;
-            }
-        }
-        s->p_ref_cell = best;
-    }
+    if (a->so.has_p_ref_point)
+        s->p_ref_cell = a->p_ref_point_cell;
     if ((int)s->lap.model < 0)
         return UMP_FAIL(err, UMP_ERR_INPUT, "system/fvSolution: unknown laplacian '%s'", a->um.laplacian);
     return UMP_OK;
@@ -464,7 +455,7 @@ static ump_status fo_setup(app *a, ump_err *err)
         fob_sfv *f = &a->fo.sf[i];
         UMP_CALL(fo_resolve(a, &f->c, err));
         for (int j = 0; j < f->nfields; j++)
-            if (!a->T && (f->field[j] == FOB_FIELD_T || f->field[j] == FOB_FIELD_P_RGH))
+            if (!a->bu.on && (f->field[j] == FOB_FIELD_T || f->field[j] == FOB_FIELD_P_RGH))
                 return UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/controlDict: function object '%s': field '%s' "
                                 "exists only in a buoyant case (constant/g)", a->case_dir, f->c.name,
                                 fob_field_name(f->field[j]));
@@ -569,6 +560,68 @@ static ump_status run_functions(app *a, const rt_time *t, long step, const char 
     return UMP_OK;
 }
 
+/* The cell of the mesh holding pRefPoint (setRefCell.C: the point must be
+ * in a cell, else "Unable to set reference cell"). The normal coordinate
+ * must lie in the one-cell-thick slab. */
+static ump_status locate_p_ref_point(app *a, ump_err *err)
+{
+    const double *P = a->so.p_ref_point;
+    const mesh2d *m = a->m;
+    double X = P[m->ax[0]], Y = P[m->ax[1]], Z = P[m->normal];
+    a->p_ref_point_cell = -1;
+    if (Z >= m->zmin && Z <= m->zmax)
+        for (ump_idx c = 0; c < m->ncells && a->p_ref_point_cell < 0; c++)
+            if (part_in_cell(m, c, X, Y))
+                a->p_ref_point_cell = c;
+    if (a->p_ref_point_cell < 0)
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/fvSolution: Unable to set reference cell for field p. "
+                        "Reference point pRefPoint (%g %g %g) found on 0 domains (it is outside the mesh)",
+                        a->case_dir, P[0], P[1], P[2]);
+    return UMP_OK;
+}
+
+/* Everything read before the fields: transportProperties, fvSolution
+ * (PISO/PIMPLE/SIMPLE and UMPPM), gravity, the function objects, the
+ * pRefPoint cell. */
+static ump_status read_settings(app *a, ump_err *err)
+{
+    const char *case_dir = a->case_dir;
+    UMP_CALL(case_read_transport(case_dir, &a->tr, err));
+    UMP_CALL(case_read_solution(case_dir, &a->so, err));
+    UMP_CALL(case_read_umppm(case_dir, &a->um, err));
+    UMP_CALL(case_read_buoyancy(case_dir, &a->bu, err));
+    if (a->bu.on)
+        UMP_CALL(case_require_boussinesq(case_dir, &a->tr, err));
+    UMP_CALL(fob_read(case_dir, &a->fo, err));
+    UMP_CALL(feat_ddt_scheme(case_dir, a->ddt, sizeof a->ddt, err));
+    if (a->so.has_p_ref_point)
+        UMP_CALL(locate_p_ref_point(a, err));
+    return UMP_OK;
+}
+
+ump_status app_check_case(const char *case_dir, const case_control *c, const char *tname, double t0,
+                          ump_err *err)
+{
+    UMP_CALL(case_check_start(case_dir, c, tname, t0, err));
+    return feat_check_case(case_dir, tname, err);
+}
+
+ump_status app_check_settings(const char *case_dir, pmesh *pm, mesh2d *m, ump_err *err)
+{
+    app a;
+    memset(&a, 0, sizeof a);
+    a.case_dir = case_dir;
+    a.pm = pm; /* borrowed */
+    a.m = m;
+    ump_status rc = read_settings(&a, err);
+    if (rc == UMP_OK)
+        rc = fo_setup(&a, err);
+    a.pm = NULL;
+    a.m = NULL;
+    app_free(&a);
+    return rc;
+}
+
 ump_status app_run(const char *case_dir, ump_err *err)
 {
     app a;
@@ -581,19 +634,15 @@ ump_status app_run(const char *case_dir, ump_err *err)
     sol_settings s;
     printf("Create time\n\n");
     if ((rc = case_read_control(case_dir, &a.ctl, err)) != UMP_OK ||
-        (rc = case_start_dir(case_dir, &a.ctl, tname, sizeof tname, &t0, err)) != UMP_OK)
+        (rc = case_start_dir(case_dir, &a.ctl, tname, sizeof tname, &t0, err)) != UMP_OK ||
+        (rc = app_check_case(case_dir, &a.ctl, tname, t0, err)) != UMP_OK)
         goto done;
     snprintf(pmdir, sizeof pmdir, "%s/constant/polyMesh", case_dir);
     printf("Create mesh for time = %s\n\n", tname);
     if ((rc = pmesh_read(pmdir, &a.pm, err)) != UMP_OK || (rc = mesh_build(a.pm, &a.m, err)) != UMP_OK)
         goto done;
     printf("Reading transportProperties\n\n");
-    if ((rc = case_read_transport(case_dir, &a.tr, err)) != UMP_OK ||
-        (rc = case_read_solution(case_dir, &a.so, err)) != UMP_OK ||
-        (rc = case_read_umppm(case_dir, &a.um, err)) != UMP_OK ||
-        (rc = case_check_laminar(case_dir, err)) != UMP_OK ||
-        (rc = case_read_buoyancy(case_dir, &a.bu, err)) != UMP_OK ||
-        (rc = fob_read(case_dir, &a.fo, err)) != UMP_OK)
+    if ((rc = read_settings(&a, err)) != UMP_OK)
         goto done;
     if (a.bu.on && (rc = read_buoyant(&a, tname, err)) != UMP_OK)
         goto done;
@@ -611,6 +660,8 @@ ump_status app_run(const char *case_dir, ump_err *err)
                                                                    a.um.re_factor}));
     printf(", PPE solver %s, predictor BiCGSTAB/%s tolerance %g\n", a.um.ppe_solver, a.um.pred_pc,
            a.um.pred_tol);
+    printf("Time scheme: ddtSchemes %s; umppmFoam runs its first-order implicit UMPPM step (Eq. 14) "
+           "for Euler and backward alike\n", a.ddt);
     printf("Threads: %d (OpenMP; set OMP_NUM_THREADS to change)\n\n", sol_threads());
     double tb = wall_seconds();
     if (a.bu.on)

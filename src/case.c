@@ -62,6 +62,36 @@ static ump_status get_positive(const foam_dict *d, const char *key, double *v, u
     return UMP_OK;
 }
 
+/* startTime, endTime, deltaT, writeInterval (and maxCo, maxDeltaT) must be
+ * finite numbers: `endTime nan` would end the run before its first step
+ * and `endTime 1e400` (inf) never; deltaT and writeInterval > 0 (checked by
+ * get_positive); endTime >= startTime. */
+static ump_status check_times(const foam_dict *d, const case_control *c, ump_err *err)
+{
+    const struct {
+        const char *key;
+        double v;
+    } t[] = {{"startTime", c->start_time}, {"endTime", c->end_time}, {"deltaT", c->delta_t},
+             {"writeInterval", c->write_interval}, {"maxCo", c->max_co}};
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++)
+        if (!isfinite(t[i].v)) {
+            const foam_entry *e = foam_dict_find(d, t[i].key, 0);
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s must be a finite number, found %g", e ? e->file : "?",
+                            e ? e->line : 0, t[i].key, t[i].v);
+        }
+    if (!(c->max_delta_t > 0)) {
+        const foam_entry *e = foam_dict_find(d, "maxDeltaT", 0);
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: maxDeltaT must be positive, found %g", e ? e->file : "?",
+                        e ? e->line : 0, c->max_delta_t);
+    }
+    if (c->start_from == CASE_START_STARTTIME && c->end_time < c->start_time) {
+        const foam_entry *e = foam_dict_find(d, "endTime", 0);
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: endTime %g is before startTime %g: nothing to run",
+                        e ? e->file : "?", e ? e->line : 0, c->end_time, c->start_time);
+    }
+    return UMP_OK;
+}
+
 ump_status case_read_control(const char *case_dir, case_control *c, ump_err *err)
 {
     static const word_enum start_from[] = {
@@ -132,6 +162,8 @@ ump_status case_read_control(const char *case_dir, case_control *c, ump_err *err
     c->purge_write = (int)purge;
     c->write_precision = (int)wprec;
     c->time_precision = (int)tprec;
+    if ((rc = check_times(d, c, err)) != UMP_OK)
+        goto done;
     if (c->write_control == CASE_WRITE_TIMESTEP && c->write_interval < 1) {
         rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: writeControl timeStep needs writeInterval >= 1", f->path);
         goto done;
@@ -235,26 +267,6 @@ ump_status case_read_buoyancy(const char *case_dir, case_buoyancy *b, ump_err *e
     return rc;
 }
 
-ump_status case_check_laminar(const char *case_dir, ump_err *err)
-{
-    char path[4096];
-    snprintf(path, sizeof path, "%s/constant/turbulenceProperties", case_dir);
-    if (!foam_file_exists(path))
-        return UMP_OK;
-    foam_file *f = NULL;
-    UMP_CALL(foam_file_read(path, &f, err));
-    const char *w = NULL;
-    ump_status rc = foam_get_word(f->dict, "simulationType", &w, err);
-    if (rc == UMP_OK && strcmp(w, "laminar") != 0) {
-        const foam_entry *e = foam_dict_find(f->dict, "simulationType", 0);
-        rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                      "%s:%d: simulationType '%s' is not supported: umppmFoam is a laminar solver "
-                      "(use simulationType laminar;)", e->file, e->line, w);
-    }
-    foam_file_free(&f);
-    return rc;
-}
-
 ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *err)
 {
     char path[4096];
@@ -267,8 +279,20 @@ ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *e
     for (int i = 0; i < 3 && !a; i++)
         a = foam_dict_sub(f->dict, algo[i]);
     ump_status rc = UMP_OK;
+    /* icoFoam: "keyword PISO is undefined in dictionary .../system/fvSolution" */
+    if (!a) {
+        const foam_entry *e = NULL;
+        for (int i = 0; i < 3 && !e; i++)
+            e = foam_dict_find(f->dict, algo[i], 0);
+        if (e)
+            rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s must be a dictionary { ... }", e->file, e->line, e->key);
+        else
+            rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: keyword PISO is undefined (a PISO, PIMPLE or SIMPLE "
+                          "dictionary is required, as icoFoam's PISO { nCorrectors 2; pRefCell 0; pRefValue 0; })",
+                          f->path);
+    }
     int64_t cell = 0;
-    if (a) {
+    if (a && rc == UMP_OK) {
         if ((rc = foam_get_label_or(a, "pRefCell", 0, &cell, err)) == UMP_OK &&
             (rc = foam_get_scalar_or(a, "pRefValue", 0, &s->p_ref_value, err)) == UMP_OK &&
             foam_dict_find(a, "pRefPoint", 0)) {
@@ -785,6 +809,26 @@ ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err)
         rc = check_keys(d, "", err);
     for (size_t i = 0; i < UM_NOPT && rc == UMP_OK; i++)
         rc = read_option(d, &umppm_options[i], u, err);
+    if (rc == UMP_OK && !case_name_is_safe(u->cloud_name)) {
+        const foam_entry *e = foam_dict_find(d, "cloudName", 0);
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM cloudName '%s' is not a plain name: it becomes the "
+                      "directory <time>/lagrangian/<cloudName>, so it must be non-empty without '/' or '..'",
+                      e ? e->file : path, e ? e->line : 0, u->cloud_name);
+    }
     foam_file_free(&f);
     return rc;
+}
+
+int case_name_is_safe(const char *name)
+{
+    return name && name[0] != '\0' && !strchr(name, '/') && !strstr(name, "..");
+}
+
+ump_status case_check_start(const char *case_dir, const case_control *c, const char *tname, double t0,
+                            ump_err *err)
+{
+    if (c->end_time < t0 && !(fabs(c->end_time - t0) <= 1e-12 * fabs(t0)))
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/controlDict: endTime %g is before the start time %s: "
+                        "nothing to run", case_dir, c->end_time, tname);
+    return UMP_OK;
 }

@@ -2,6 +2,7 @@
  * funcobj.c -- the controlDict function objects umppmFoam runs (funcobj.h).
  */
 #include "umppm/funcobj.h"
+#include "umppm/case.h"
 #include "umppm/fieldio.h"
 #include "umppm/foam.h"
 
@@ -157,6 +158,12 @@ ump_status fob_read(const char *case_dir, fob_list *L, ump_err *err)
         if (!e->dict) { /* #includeFunc and other primitive entries */
             note_ignored(L, e->key, "not a dictionary");
             continue;
+        }
+        if (!case_name_is_safe(e->key)) { /* postProcessing/<name>/... */
+            rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: function object name '%s' is not a plain name: it becomes "
+                          "the directory postProcessing/<name>, so it must be non-empty without '/' or '..'",
+                          e->file, e->line, e->key);
+            break;
         }
         const char *type = NULL;
         int enabled = 1;

@@ -7,8 +7,11 @@
  * -help also lists the keys of the UMPPM dictionary of system/fvSolution
  * (case_umppm_help: key, default, allowed values, help; the reader's table).
  *
- * -checkMesh reads the case (controlDict, polyMesh), builds the 2-D UMPPM
- * pressure mesh and prints its statistics. With -writeFields it also reads
+ * -checkMesh reads the case (controlDict, polyMesh), applies every check of
+ * a run before its fields (app_check_case: unsupported features refused by
+ * name; app_check_settings: transportProperties, fvSolution, function
+ * objects, pRefPoint), builds the 2-D UMPPM pressure mesh and prints its
+ * statistics. With -writeFields it also reads
  * the start-time fields U and p and writes them back into the start time
  * directory in the case's writeFormat/writePrecision/writeCompression (as
  * foamFormatConvert does), together with C and V (cell centres and volumes,
@@ -275,6 +278,10 @@ int main(int argc, char **argv)
                 return 1;
             }
             o.case_dir = argv[++i];
+            if (o.case_dir[0] == '\0') {
+                fprintf(stderr, "--> umppmFoam FATAL ERROR: option -case: the directory name is empty\n");
+                return 1;
+            }
         } else if (strcmp(a, "-checkMesh") == 0) {
             o.check_mesh = 1;
         } else if (strcmp(a, "-writeFields") == 0) {
@@ -310,7 +317,8 @@ int main(int argc, char **argv)
         return fatal(&err);
     char tname[256];
     double t0;
-    if (case_start_dir(o.case_dir, &ctl, tname, sizeof tname, &t0, &err) != UMP_OK)
+    if (case_start_dir(o.case_dir, &ctl, tname, sizeof tname, &t0, &err) != UMP_OK ||
+        app_check_case(o.case_dir, &ctl, tname, t0, &err) != UMP_OK)
         return fatal(&err);
 
     char pmdir[4096];
@@ -324,8 +332,13 @@ int main(int argc, char **argv)
         pmesh_free(&pm);
         return fatal(&err);
     }
-    print_mesh(pm, m);
     int rc = 0;
+    if (app_check_settings(o.case_dir, pm, m, &err) != UMP_OK) {
+        mesh_free(&m);
+        pmesh_free(&pm);
+        return fatal(&err);
+    }
+    print_mesh(pm, m);
     if (o.write_fields)
         rc = write_fields(o.case_dir, tname, pm, m, &ctl);
     mesh_free(&m);

@@ -7,8 +7,22 @@
 #ifndef UMPPM_APP_H
 #define UMPPM_APP_H
 
+#include "umppm/case.h"
+#include "umppm/mesh2d.h"
+#include "umppm/polymesh.h"
 #include "umppm/ump.h"
 
 ump_status app_run(const char *case_dir, ump_err *err);
+
+/* The checks of a run before the mesh is read (used by -checkMesh too):
+ * endTime not before the start time t0 (directory tname), then every
+ * feature umppmFoam does not implement refused by name (feat_check_case). */
+ump_status app_check_case(const char *case_dir, const case_control *c, const char *tname, double t0,
+                          ump_err *err);
+/* The checks of a run after the mesh (pm, m borrowed) and before the
+ * fields: transportProperties, fvSolution (PISO/PIMPLE/SIMPLE, UMPPM),
+ * constant/g, the function objects and their patches, the ddt scheme,
+ * pRefPoint inside the mesh. Used by -checkMesh. */
+ump_status app_check_settings(const char *case_dir, pmesh *pm, mesh2d *m, ump_err *err);
 
 #endif

@@ -151,7 +151,10 @@ ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err);
 
 /* Read <case>/system/controlDict. Missing required keys (deltaT, endTime,
  * startTime unless latestTime/firstTime, writeInterval) are errors naming
- * file and line; unknown enumeration words are errors listing the valid ones. */
+ * file and line; unknown enumeration words are errors listing the valid ones;
+ * startTime, endTime, deltaT, writeInterval, maxCo must be finite, deltaT,
+ * writeInterval, maxDeltaT positive, endTime >= startTime (startFrom
+ * startTime). */
 ump_status case_read_control(const char *case_dir, case_control *c, ump_err *err);
 /* Read <case>/constant/transportProperties: nu (required), beta, TRef, Pr,
  * Prt (optional), each with or without dimensions; wrong dimensions or
@@ -161,12 +164,17 @@ ump_status case_read_transport(const char *case_dir, case_transport *t, ump_err 
 ump_status case_require_boussinesq(const char *case_dir, const case_transport *t, ump_err *err);
 /* constant/g (absent: b->on = 0) and constant/hRef. */
 ump_status case_read_buoyancy(const char *case_dir, case_buoyancy *b, ump_err *err);
-/* constant/turbulenceProperties: absent, or simulationType laminar; any
- * other model is refused by name. */
-ump_status case_check_laminar(const char *case_dir, ump_err *err);
 /* Read <case>/system/fvSolution: pRefCell/pRefValue/pRefPoint from the PISO,
- * PIMPLE or SIMPLE sub-dictionary (first present). Missing file is an error. */
+ * PIMPLE or SIMPLE sub-dictionary (first present). A missing file, or none
+ * of the three dictionaries, is an error (icoFoam needs PISO). */
 ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *err);
+
+/* 1 if name can become one path component (a cloud or function-object
+ * directory): non-empty, no '/', no "..". */
+int case_name_is_safe(const char *name);
+/* endTime before the start time t0 (directory tname) is an error. */
+ump_status case_check_start(const char *case_dir, const case_control *c, const char *tname, double t0,
+                            ump_err *err);
 
 /* Time directories of a case: names whose text reads fully as a number
  * (plus "0"), sorted by value. *names is an array of *n malloc'd strings;

@@ -7,6 +7,7 @@
  */
 #include "testutil.h"
 #include "umppm/case.h"
+#include "umppm/features.h"
 #include "umppm/fieldio.h"
 #include "umppm/laplacian.h"
 #include "umppm/lsolve.h"
@@ -116,6 +117,76 @@ static void test_transport_and_solution(void **state)
     assert_int_equal(case_read_solution(d, &s, &err), UMP_OK);
     assert_true(s.has_p_ref_point);
     TU_CLOSE(s.p_ref_point[1], 0.2, 0);
+    tu_rmtree(d);
+}
+
+/* Issue 15: non-finite or inconsistent times, a missing PISO, unsafe
+ * names, and the features refused by name. */
+static void test_refusals(void **state)
+{
+    (void)state;
+    char d[64];
+    tu_tmpdir(d, sizeof d);
+    mk(d, "constant");
+    mk(d, "system");
+    mk(d, "0");
+    case_control c;
+    ump_err err;
+    const char *bad[][2] = {{"startTime 0; endTime nan; deltaT 0.1; writeInterval 1;\n", "endTime must be a finite"},
+                            {"startTime 0; endTime 1; deltaT inf; writeInterval 1;\n", "deltaT must be a finite"},
+                            {"startTime 0; endTime 1; deltaT 0.1; writeInterval 0;\n", "writeInterval must be positive"},
+                            {"startTime 2; endTime 1; deltaT 0.1; writeInterval 1;\n", "before startTime"}};
+    for (int i = 0; i < 4; i++) {
+        write2(d, "system/controlDict", HDR, bad[i][0]);
+        assert_int_equal(case_read_control(d, &c, &err), UMP_ERR_INPUT);
+        if (!strstr(err.msg, bad[i][1]))
+            fail_msg("case %d: %s", i, err.msg);
+    }
+    write2(d, "system/controlDict", HDR, "startFrom latestTime; endTime 1; deltaT 0.1; writeInterval 1;\n");
+    assert_int_equal(case_read_control(d, &c, &err), UMP_OK);
+    assert_int_equal(case_check_start(d, &c, "2", 2.0, &err), UMP_ERR_INPUT);
+    assert_int_equal(case_check_start(d, &c, "1", 1.0, &err), UMP_OK);
+
+    case_solution so;
+    write2(d, "system/fvSolution", HDR, "solvers { }\n");
+    assert_int_equal(case_read_solution(d, &so, &err), UMP_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "keyword PISO is undefined"));
+    case_umppm u;
+    write2(d, "system/fvSolution", HDR, "PISO { }\nUMPPM { cloudName \"a/../b\"; }\n");
+    assert_int_equal(case_read_umppm(d, &u, &err), UMP_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "not a plain name"));
+    assert_true(case_name_is_safe("umppmCloud"));
+    assert_false(case_name_is_safe(""));
+    assert_false(case_name_is_safe(".."));
+    assert_false(case_name_is_safe("a/b"));
+
+    /* features: accepted, then refused by name */
+    write2(d, "constant/transportProperties", HDR, "transportModel Newtonian; nu 0.01;\n");
+    write2(d, "constant/fvOptions", HDR, "");
+    write2(d, "constant/MRFProperties", HDR, "zone { active false; }\n");
+    write2(d, "system/fvSchemes", HDR, "ddtSchemes { default none; ddt(U) backward; }\n");
+    assert_int_equal(feat_check_case(d, "0", &err), UMP_OK);
+    char ddt[64];
+    assert_int_equal(feat_ddt_scheme(d, ddt, sizeof ddt, &err), UMP_OK);
+    assert_string_equal(ddt, "backward");
+    /* file, bad content, expected text, accepted content (restored) */
+    const char *feat[][4] = {
+        {"constant/fvOptions", "src { type meanVelocityForce; }\n", "entry 'src', type meanVelocityForce", ""},
+        {"constant/MRFProperties", "zone { active yes; }\n", "MRF (rotating frame)", ""},
+        {"system/fvSchemes", "ddtSchemes { default CrankNicolson 0.9; }\n", "ddtSchemes default CrankNicolson",
+         "ddtSchemes { default Euler; }\n"},
+        {"constant/transportProperties", "transportModel powerLaw;\n", "transportModel powerLaw: non-Newtonian",
+         "nu 0.01;\n"},
+        {"constant/dynamicMeshDict", "dynamicFvMesh dynamicInkJetFvMesh;\n", "moving or topology-changing",
+         "dynamicFvMesh staticFvMesh;\n"}};
+    for (int i = 0; i < 5; i++) {
+        write2(d, feat[i][0], HDR, feat[i][1]);
+        assert_int_equal(feat_check_case(d, "0", &err), UMP_ERR_UNSUPPORTED);
+        if (!strstr(err.msg, feat[i][2]))
+            fail_msg("feature %d: %s", i, err.msg);
+        write2(d, feat[i][0], HDR, feat[i][3]);
+        assert_int_equal(feat_check_case(d, "0", &err), UMP_OK);
+    }
     tu_rmtree(d);
 }
 
@@ -714,6 +785,7 @@ int main(void)
         cmocka_unit_test(test_control_defaults),
         cmocka_unit_test(test_transport_and_solution),
         cmocka_unit_test(test_times),
+        cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_field_matching),
         cmocka_unit_test(test_umppm_table),
         cmocka_unit_test(test_umppm_defaults),
