@@ -733,6 +733,10 @@ static void recover_report(void *ctx, fio_recovery what, const char *hidden, con
     case FIO_REMOVED_DEL:
         printf("Removed %s (process %ld was killed while purgeWrite deleted time %s)\n", hidden, pid, tname);
         break;
+    case FIO_LEFT_BLOCKED:
+        printf("--> umppmFoam Warning: %s kept: it is time %s of a run killed during its overwrite, and a "
+               "non-directory named %s is in the way of recovering it\n", hidden, tname, tname);
+        break;
     case FIO_LEFT_RUNNING:
         printf("--> umppmFoam Warning: %s left alone: process %ld is running (another run in this case?)\n",
                hidden, pid);

@@ -12,7 +12,8 @@
  *                   renames), else removed (killed while deleting it);
  *   .<t>.del.<pid>  a time directory purgeWrite was deleting: removed.
  * A directory whose process is still running (kill(pid, 0) succeeds, and
- * it is not this process) is left alone.
+ * it is not this process) is left alone, as is an .old one when a
+ * non-directory sits at <t>.
  */
 #include "umppm/fieldio.h"
 
@@ -122,6 +123,12 @@ ump_status fio_recover(const char *case_dir, fio_recover_report report, void *ct
         if (process_running(h->pid)) {
             if (report)
                 report(ctx, FIO_LEFT_RUNNING, h->name, h->time, h->pid);
+            continue;
+        }
+        if (h->kind == 0 && lstat(target, &st) == 0 && !S_ISDIR(st.st_mode)) {
+            /* the old version is the only directory of that time: kept */
+            if (report)
+                report(ctx, FIO_LEFT_BLOCKED, h->name, h->time, h->pid);
             continue;
         }
         if (h->kind == 0 && lstat(target, &st) != 0 && errno == ENOENT) {

@@ -108,7 +108,8 @@ typedef enum fio_recovery {
     FIO_REMOVED_TMP,   /* .<t>.tmp.<pid>: an unfinished write, removed */
     FIO_REMOVED_OLD,   /* .<t>.old.<pid> while <t> is in place: removed */
     FIO_REMOVED_DEL,   /* .<t>.del.<pid>: an unfinished purgeWrite, removed */
-    FIO_LEFT_RUNNING   /* its process <pid> is still running: left alone */
+    FIO_LEFT_RUNNING,  /* its process <pid> is still running: left alone */
+    FIO_LEFT_BLOCKED   /* .<t>.old.<pid> while a non-directory is at <t>: kept */
 } fio_recovery;
 typedef void (*fio_recover_report)(void *ctx, fio_recovery what, const char *hidden,
                                    const char *time_name, long pid);

@@ -1014,9 +1014,13 @@ static void test_recover(void **state)
     snprintf(path, sizeof path, "%s/%s", cas, name);
     assert_int_equal(mkdir(path, 0777), 0);
     tu_write(cas, ".0.6.tmp.999995", "a file, not the writer's"); /* not a directory: kept */
+    snprintf(path, sizeof path, "%s/.0.7.old.999994", cas); /* its time is a file: kept */
+    assert_int_equal(mkdir(path, 0777), 0);
+    tu_write(cas, "0.7", "in the way");
     seen s = {0};
     assert_int_equal(fio_recover(cas, note, &s, &err), UMP_OK);
-    assert_int_equal(s.n, 5);
+    assert_int_equal(s.n, 6);
+    assert_int_equal(seen_what(&s, ".0.7.old.999994"), FIO_LEFT_BLOCKED);
     assert_int_equal(seen_what(&s, ".0.1.old.999999"), FIO_RECOVERED);
     assert_int_equal(seen_what(&s, ".0.2.old.999998"), FIO_REMOVED_OLD);
     assert_int_equal(seen_what(&s, ".0.3.tmp.999997"), FIO_REMOVED_TMP);
@@ -1030,11 +1034,11 @@ static void test_recover(void **state)
     text = slurp(path, NULL);
     assert_string_equal(text, "0.2");
     free(text);
-    /* 0.1 0.2 .git .0.4.tmp.abc .0.5.tmp.<ppid> .0.6.tmp.999995 */
-    assert_int_equal(count_entries(cas), 6);
+    /* 0.1 0.2 .git .0.4.tmp.abc .0.5.tmp.<ppid> .0.6.tmp.999995 0.7 .0.7.old.999994 */
+    assert_int_equal(count_entries(cas), 8);
     s.n = 0;
     assert_int_equal(fio_recover(cas, note, &s, &err), UMP_OK);
-    assert_int_equal(s.n, 1); /* the live one again */
+    assert_int_equal(s.n, 2); /* the live one and the blocked one again */
     snprintf(path, sizeof path, "%s/missing", cas);
     assert_int_equal(fio_recover(path, NULL, NULL, &err), UMP_ERR_IO);
     tu_rmtree(cas);
