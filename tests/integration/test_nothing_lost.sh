@@ -81,6 +81,15 @@ else
     bad "fallback overwrite: exit $rc, hidden '$(hidden "$d")'"
 fi
 
+d=$(fresh purge)
+setctl "$d" purgeWrite 1
+ump "$d" purge
+if [ "$rc" -eq 0 ] && [ ! -e "$d/0.01" ] && [ -f "$d/0.02/U" ] && [ -z "$(hidden "$d")" ]; then
+    ok "purgeWrite 1 (through .<t>.del.<pid>): 0.01 removed, 0.02 kept, nothing hidden left"
+else
+    bad "purgeWrite: exit $rc, hidden '$(hidden "$d")'"
+fi
+
 echo "== 2. start-up recovery"
 d=$(fresh recover)
 ump "$d" first
