@@ -16,6 +16,15 @@
  * rhok gh) are written, with the particle temperature in the cloud.
  * Without constant/g the case is isothermal (icoFoam's U and p).
  * constant/turbulenceProperties, if present, must say laminar.
+ *
+ * Nothing lost (README "Nothing lost"): hidden directories of killed runs
+ * are recovered or removed first (fio_recover, before startFrom latestTime
+ * picks a time); a restart needs its cloud unless -reseed; a file in the way
+ * of a write time known in advance is refused before the first step; after
+ * each step the divergence guard (|U| of cells and particles against
+ * maxVelocity or 100 x speed_scale()) runs before anything is written, the
+ * log is flushed and checked, and a SIGINT/SIGTERM (stopsig) makes that step
+ * a write time and the last one.
  */
 #include "umppm/app.h"
 #include "umppm/case.h"
