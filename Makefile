@@ -71,10 +71,16 @@ unit: $(UNIT_BIN) $(APP)
 	@set -e; for t in $(UNIT_BIN); do echo "== $$t"; $$t; done
 
 # Tests against OpenFOAM's own tools (blockMesh, gmshToFoam, postProcess...).
-integration: $(APP) $(TOOLS) $(BUILD)/geomcheck $(BUILD)/write_cavity_fields $(BUILD)/write_cloud
-	@UMPPMFOAM=$(abspath $(APP)) GEOMCHECK=$(abspath $(BUILD)/geomcheck) \
+integration: $(APP) $(TOOLS) $(BUILD)/geomcheck $(BUILD)/write_cavity_fields $(BUILD)/write_cloud $(BUILD)/killshim.so
+	@UMPPMFOAM=$(abspath $(APP)) GEOMCHECK=$(abspath $(BUILD)/geomcheck) KILLSHIM=$(abspath $(BUILD)/killshim.so) \
 	    WRITE_CAVITY_FIELDS=$(abspath $(BUILD)/write_cavity_fields) \
 	    WRITE_CLOUD=$(abspath $(BUILD)/write_cloud) TOOLDIR=$(abspath $(BUILD)/tools) tests/integration/run_all.sh
+
+# The LD_PRELOAD shim of test_nothing_lost.sh (SIGKILL at the k-th write
+# call): a plain shared object, never sanitized (it is preloaded).
+$(BUILD)/killshim.so: tests/integration/killshim.c
+	@mkdir -p $(dir $@)
+	$(CC) -shared -fPIC -std=c11 -Wall -Wextra -Wpedantic $(WERROR) -O2 -o $@ $< -ldl
 
 $(BUILD)/%: tests/integration/%.c $(LIB)
 	$(CC) $(CPPFLAGS) $(CFLAGS_ALL) -o $@ $< $(LIB) $(LDLIBS)

@@ -16,6 +16,15 @@
  * rhok gh) are written, with the particle temperature in the cloud.
  * Without constant/g the case is isothermal (icoFoam's U and p).
  * constant/turbulenceProperties, if present, must say laminar.
+ *
+ * Nothing lost (README "Nothing lost"): hidden directories of killed runs
+ * are recovered or removed first (fio_recover, before startFrom latestTime
+ * picks a time); a restart needs its cloud unless -reseed; a file in the way
+ * of a write time known in advance is refused before the first step; after
+ * each step the divergence guard (|U| of cells and particles against
+ * maxVelocity or 100 x speed_scale()) runs before anything is written, the
+ * log is flushed and checked, and a SIGINT/SIGTERM (stopsig) makes that step
+ * a write time and the last one.
  */
 #include "umppm/app.h"
 #include "umppm/case.h"
@@ -28,11 +37,15 @@
 #include "umppm/polymesh.h"
 #include "umppm/runtime.h"
 #include "umppm/solver.h"
+#include "umppm/stopsig.h"
 
+#include <dirent.h>
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/time.h>
 #include <time.h>
 
@@ -55,6 +68,9 @@ typedef struct app {
     char ddt[128];                  /* the ddt scheme of U (system/fvSchemes) */
     char **written;          /* purgeWrite bookkeeping */
     int nwritten;
+    app_options opt;
+    double u_scale;          /* divergence guard: the speed scale ... */
+    double u_bound;          /* ... and the bound on |U| (maxVelocity) */
 } app;
 
 static double wall_seconds(void)
@@ -279,9 +295,7 @@ static ump_status write_time(app *a, const rt_time *t, ump_err *err)
         a->written = w;
         w[a->nwritten++] = ump_strdup(t->name);
         while (a->nwritten > a->ctl.purge_write) {
-            char old[4200];
-            snprintf(old, sizeof old, "%s/%s", a->case_dir, w[0]);
-            UMP_CALL(fio_remove_dir(old, err));
+            UMP_CALL(fio_remove_timedir(a->case_dir, w[0], err));
             free(w[0]);
             memmove(w, w + 1, (size_t)(a->nwritten - 1) * sizeof *w);
             a->nwritten--;
@@ -301,8 +315,24 @@ static ump_status restart_cloud(app *a, const char *tname, ump_err *err)
     char dir[4400], path[4600];
     snprintf(dir, sizeof dir, "%s/%s", a->case_dir, tname);
     snprintf(path, sizeof path, "%s/lagrangian/%s/positions", dir, a->um.cloud_name);
-    if (!foam_file_exists(path))
+    if (a->opt.reseed) {
+        printf("Restart: -reseed: particles seeded from the fields of time %s%s\n\n", tname,
+               foam_file_exists(path) ? " (its cloud is not read)" : "");
         return UMP_OK;
+    }
+    if (!foam_file_exists(path)) {
+        /* a time some solver wrote (uniform/time) or one with the cloud's
+         * directory is a restart: its particles are part of the state */
+        char ut[4600], cl[4600];
+        struct stat st;
+        snprintf(ut, sizeof ut, "%s/uniform/time", dir);
+        snprintf(cl, sizeof cl, "%s/lagrangian/%s", dir, a->um.cloud_name);
+        if (stat(ut, &st) == 0 || stat(cl, &st) == 0)
+            return UMP_FAIL(err, UMP_ERR_IO, "%s: not found: the restart from time %s has no particle cloud "
+                            "'%s' (cloudName); run with -reseed to seed new particles from the fields",
+                            path, tname, a->um.cloud_name);
+        return UMP_OK; /* a first start (e.g. 0/): the particles are seeded */
+    }
     size_t n = 0, dropped = 0;
     double *pos = NULL, *vel = NULL, *xy = NULL, *T = NULL;
     int64_t *id = NULL;
@@ -340,14 +370,167 @@ static ump_status restart_cloud(app *a, const char *tname, ump_err *err)
     return rc;
 }
 
-static int finite_fields(const app *a)
+/* The divergence guard's speed scale, from the start fields: the largest
+ * of the boundary |U|, the initial |U|, nu/L, the Bernoulli speed
+ * sqrt(2 dp) and the creeping-flow speed dp L / nu of the pressure
+ * differences dp over the start p (p_rgh when buoyant), and, when buoyant,
+ * the free-fall speed sqrt(|g| beta dT L) (L: the larger side of the mesh's
+ * bounding box, dT: the range of the start T). */
+static double speed_scale(const app *a)
+{
+    const mesh2d *m = a->m;
+    double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+    for (ump_idx c = 0; c < m->ncells; c++) {
+        xmin = fmin(xmin, m->cx[c]);
+        xmax = fmax(xmax, m->cx[c]);
+        ymin = fmin(ymin, m->cy[c]);
+        ymax = fmax(ymax, m->cy[c]);
+    }
+    double L = fmax(xmax - xmin, ymax - ymin);
+    if (!(L > 0))
+        L = 1;
+    double u2 = 0;
+    const fld_field *U = a->U, *P = a->bu.on ? a->prgh : a->p;
+    for (ump_idx c = 0; c < U->ncells; c++) {
+        const double *v = U->internal + 3 * (size_t)c;
+        u2 = fmax(u2, v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    }
+    for (int p = 0; p < U->npatches; p++)
+        for (ump_idx i = 0; U->patch[p].value && i < U->patch[p].n; i++) {
+            const double *v = U->patch[p].value + 3 * (size_t)i;
+            u2 = fmax(u2, v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        }
+    double scale = fmax(sqrt(u2), a->tr.nu / L);
+    const fld_field *rng[2] = {P, a->T};
+    double dp = 0, dT = 0;
+    for (int k = 0; k < 2; k++) {
+        const fld_field *f = rng[k];
+        if (!f)
+            continue;
+        double lo = INFINITY, hi = -INFINITY;
+        for (ump_idx c = 0; c < f->ncells; c++) {
+            lo = fmin(lo, f->internal[c]);
+            hi = fmax(hi, f->internal[c]);
+        }
+        for (int p = 0; p < f->npatches; p++)
+            for (ump_idx i = 0; f->patch[p].value && i < f->patch[p].n; i++) {
+                lo = fmin(lo, f->patch[p].value[i]);
+                hi = fmax(hi, f->patch[p].value[i]);
+            }
+        double d = hi > lo ? hi - lo : 0;
+        if (k == 0)
+            dp = d;
+        else
+            dT = d;
+    }
+    scale = fmax(scale, fmax(sqrt(2 * dp), a->tr.nu > 0 ? dp * L / a->tr.nu : 0));
+    if (a->bu.on) {
+        double g = sqrt(a->bu.g[0] * a->bu.g[0] + a->bu.g[1] * a->bu.g[1] + a->bu.g[2] * a->bu.g[2]);
+        scale = fmax(scale, sqrt(g * fabs(a->tr.beta) * dT * L));
+    }
+    return scale;
+}
+
+/* After a step: every cell and particle velocity finite and within
+ * a->u_bound, p and T finite; else an error naming the cell (or particle),
+ * the value, the bound and the time. */
+static ump_status check_divergence(const app *a, const char *tname, ump_err *err)
 {
     const double *u = sol_cell_u(a->S), *v = sol_cell_v(a->S), *p = sol_cell_p(a->S);
     const double *T = sol_cell_T(a->S);
-    for (ump_idx c = 0; c < a->m->ncells; c++)
-        if (!isfinite(u[c]) || !isfinite(v[c]) || !isfinite(p[c]) || (T && !isfinite(T[c])))
-            return 0;
-    return 1;
+    const mesh2d *m = a->m;
+    const double b2 = a->u_bound * a->u_bound;
+    char why[160];
+    if (a->um.max_velocity > 0)
+        snprintf(why, sizeof why, "UMPPM maxVelocity");
+    else
+        snprintf(why, sizeof why, "100 x the speed scale %g; UMPPM maxVelocity sets it", a->u_scale);
+    for (ump_idx c = 0; c < m->ncells; c++) {
+        double s2 = u[c] * u[c] + v[c] * v[c];
+        if (!(s2 <= b2))
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s: the solution diverged at time %s: |U| = %g in cell %ld at "
+                            "(%g %g) exceeds the bound %g (%s); time %s is not written; reduce deltaT or maxCo",
+                            a->case_dir, tname, sqrt(s2), (long)c, m->cx[c], m->cy[c], a->u_bound, why, tname);
+        if (!isfinite(p[c]) || (T && !isfinite(T[c])))
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s: the solution diverged at time %s: %s = %g in cell %ld at "
+                            "(%g %g); time %s is not written; reduce deltaT or maxCo", a->case_dir, tname,
+                            isfinite(p[c]) ? "T" : "p", isfinite(p[c]) ? T[c] : p[c], (long)c, m->cx[c],
+                            m->cy[c], tname);
+    }
+    const part_set *P = sol_particles(a->S);
+    for (size_t i = 0; i < P->n; i++) {
+        double s2 = P->u[i] * P->u[i] + P->v[i] * P->v[i];
+        if (!(s2 <= b2))
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s: the solution diverged at time %s: |U| = %g of particle %lld "
+                            "at (%g %g) exceeds the bound %g (%s); time %s is not written; reduce deltaT or "
+                            "maxCo", a->case_dir, tname, sqrt(s2), (long long)P->id[i], P->x[i], P->y[i],
+                            a->u_bound, why, tname);
+    }
+    return UMP_OK;
+}
+
+/* Numbers-named non-directories in the case directory (files in the way of
+ * time directories): their names, NUL-separated in *names (caller-freed),
+ * and their count. */
+static int blocking_files(const char *case_dir, char **names)
+{
+    *names = NULL;
+    DIR *d = opendir(case_dir);
+    if (!d)
+        return 0;
+    size_t len = 0;
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        char *end;
+        if (e->d_name[0] == '.' || e->d_name[0] == '\0')
+            continue;
+        (void)strtod(e->d_name, &end);
+        if (*end != '\0')
+            continue;
+        char path[4400];
+        struct stat st;
+        snprintf(path, sizeof path, "%s/%s", case_dir, e->d_name);
+        if (lstat(path, &st) != 0 || S_ISDIR(st.st_mode))
+            continue;
+        size_t k = strlen(e->d_name) + 1;
+        char *grow = realloc(*names, len + k + 1);
+        if (!grow)
+            break;
+        *names = grow;
+        memcpy(grow + len, e->d_name, k);
+        len += k;
+        grow[len] = '\0';
+        n++;
+    }
+    closedir(d);
+    return n;
+}
+
+/* Before the run: when the write times can be known in advance (no
+ * adjustTimeStep; writeControl timeStep, runTime or adjustableRunTime), a
+ * file in the way of one of them is an error now rather than after the
+ * steps before it. Otherwise fio_timedir_begin refuses it at write time. */
+static ump_status check_planned_writes(const app *a, const rt_time *t0, ump_err *err)
+{
+    char *names = NULL;
+    if (blocking_files(a->case_dir, &names) == 0)
+        return UMP_OK;
+    ump_status rc = UMP_OK;
+    int known = !a->ctl.adjust_time_step && (a->ctl.write_control == CASE_WRITE_TIMESTEP ||
+                                             a->ctl.write_control == CASE_WRITE_RUNTIME ||
+                                             a->ctl.write_control == CASE_WRITE_ADJUSTABLERUNTIME);
+    rt_time t = *t0;
+    for (long k = 0; known && rc == UMP_OK && rt_running(&t) && k < 10000000; k++) {
+        rt_advance(&t);
+        if (!t.write_time)
+            continue;
+        for (const char *n = names; *n && rc == UMP_OK; n += strlen(n) + 1)
+            if (strcmp(n, t.name) == 0)
+                rc = fio_timedir_check(a->case_dir, t.name, err);
+    }
+    free(names);
+    return rc;
 }
 
 /* Read a start-time field; a missing optional one gets `calculated`
@@ -622,18 +805,53 @@ ump_status app_check_settings(const char *case_dir, pmesh *pm, mesh2d *m, ump_er
     return rc;
 }
 
-ump_status app_run(const char *case_dir, ump_err *err)
+static void recover_report(void *ctx, fio_recovery what, const char *hidden, const char *tname, long pid)
+{
+    (void)ctx;
+    switch (what) {
+    case FIO_RECOVERED:
+        printf("Recovered time %s from %s (a run was killed during its overwrite)\n", tname, hidden);
+        break;
+    case FIO_REMOVED_TMP:
+        printf("Removed incomplete %s (process %ld was killed while writing time %s)\n", hidden, pid, tname);
+        break;
+    case FIO_REMOVED_OLD:
+        printf("Removed %s (the previous version of time %s; the new one is in place)\n", hidden, tname);
+        break;
+    case FIO_REMOVED_DEL:
+        printf("Removed %s (process %ld was killed while purgeWrite deleted time %s)\n", hidden, pid, tname);
+        break;
+    case FIO_LEFT_BLOCKED:
+        printf("--> umppmFoam Warning: %s kept: it is time %s of a run killed during its overwrite, and a "
+               "non-directory named %s is in the way of recovering it\n", hidden, tname, tname);
+        break;
+    case FIO_LEFT_RUNNING:
+        printf("--> umppmFoam Warning: %s left alone: process %ld is running (another run in this case?)\n",
+               hidden, pid);
+        break;
+    }
+}
+
+ump_status app_recover(const char *case_dir, ump_err *err)
+{
+    return fio_recover(case_dir, recover_report, NULL, err);
+}
+
+ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
 {
     app a;
     memset(&a, 0, sizeof a);
     a.case_dir = case_dir;
+    if (opt)
+        a.opt = *opt;
     ump_status rc;
     char tname[256], pmdir[4096];
     double t0, wall0 = wall_seconds();
     clock_t cpu0 = clock();
     sol_settings s;
     printf("Create time\n\n");
-    if ((rc = case_read_control(case_dir, &a.ctl, err)) != UMP_OK ||
+    if ((rc = app_recover(case_dir, err)) != UMP_OK ||
+        (rc = case_read_control(case_dir, &a.ctl, err)) != UMP_OK ||
         (rc = case_start_dir(case_dir, &a.ctl, tname, sizeof tname, &t0, err)) != UMP_OK ||
         (rc = app_check_case(case_dir, &a.ctl, tname, t0, err)) != UMP_OK)
         goto done;
@@ -675,6 +893,14 @@ ump_status app_run(const char *case_dir, ump_err *err)
 
     rt_time t;
     rt_init(&t, &a.ctl, t0, tname);
+    if ((rc = check_planned_writes(&a, &t, err)) != UMP_OK)
+        goto done;
+    a.u_scale = speed_scale(&a);
+    a.u_bound = a.um.max_velocity > 0 ? a.um.max_velocity : 100 * a.u_scale;
+    printf("Divergence guard: |U| <= %g (%s)\n", a.u_bound,
+           a.um.max_velocity > 0 ? "UMPPM maxVelocity" : "100 x the speed scale of the start fields");
+    if (stopsig_install() != 0)
+        printf("--> umppmFoam Warning: cannot install the SIGINT/SIGTERM handler: %s\n", strerror(errno));
     double co_mean, co_max;
     if (a.ctl.adjust_time_step) {
         sol_courant(a.S, t.delta_t, &co_mean, &co_max);
@@ -722,12 +948,12 @@ ump_status app_run(const char *case_dir, ump_err *err)
         printf("time step continuity errors : sum local = %g, global = %g, cumulative = %g\n",
                st.cont_local, st.cont_global, cont_cumulative);
         printf("time step continuity errors : max = %g\n", st.cont_max);
-        if (!finite_fields(&a)) {
-            rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: the solution diverged at time %s (NaN or inf); "
-                          "reduce deltaT or maxCo", case_dir, t.name);
+        if ((rc = check_divergence(&a, t.name, err)) != UMP_OK)
             goto done;
-        }
         step++;
+        int sig = stopsig_pending();
+        if (sig)
+            t.write_time = 1; /* stopAt writeNow: this step is written, the run ends */
         if ((rc = run_functions(&a, &t, step, tname, err)) != UMP_OK)
             goto done;
         if (t.write_time) {
@@ -736,6 +962,17 @@ ump_status app_run(const char *case_dir, ump_err *err)
         }
         printf("ExecutionTime = %.4g s  ClockTime = %.0f s\n\n",
                (double)(clock() - cpu0) / CLOCKS_PER_SEC, wall_seconds() - wall0);
+        if (sig)
+            printf("sigStopAtWriteNow : %s received: time %s written, stopping (stopAt writeNow)\n\n",
+                   stopsig_name(sig), t.name);
+        errno = 0;
+        if (fflush(stdout) != 0 || ferror(stdout)) {
+            rc = UMP_FAIL(err, UMP_ERR_IO, "standard output: cannot write the log (%s); stopped after time %s",
+                          errno ? strerror(errno) : "write error", t.name);
+            goto done;
+        }
+        if (sig)
+            break;
     }
     if (step > 0) {
         /* where the time went, per stage of the step (CPU of all threads) */

@@ -469,6 +469,9 @@ static const case_option umppm_options[] = {
      "name of the particle cloud under <time>/lagrangian/", UM_FIELD(cloud_name)},
     {"sortInterval", CASE_OPT_LABEL, "1", 1, NULL, NULL, UM_GE(0),
      "re-sort the particles by cell every N steps; 0: never", UM_FIELD(sort_interval)},
+    {"maxVelocity", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_GE(0),
+     "stop when a cell or particle |U| exceeds it; 0: 100 x the speed scale",
+     UM_FIELD(max_velocity)},
 };
 
 #define UM_NOPT (sizeof umppm_options / sizeof umppm_options[0])

@@ -10,14 +10,19 @@
  * binary lists as "\nN\n(" + little-endian doubles + ")", empty lists
  * "0()" (ascii) or "0" (binary) without a List<> prefix.
  */
+/* renameat2 (glibc >= 2.28) needs _GNU_SOURCE */
+#define _GNU_SOURCE
 #include "umppm/fieldio.h"
 
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/types.h>
 #include <unistd.h>
 #include <zlib.h>
@@ -320,10 +325,48 @@ ump_status fio_remove_dir(const char *path, ump_err *err)
     return UMP_OK;
 }
 
-static int path_exists(const char *path)
+/* Swap two directories atomically: renameat2(RENAME_EXCHANGE), Linux >=
+ * 3.15. -1 with errno EINVAL/ENOSYS/EOPNOTSUPP where the filesystem or the
+ * kernel has no exchange. */
+#ifndef RENAME_EXCHANGE
+#define RENAME_EXCHANGE (1 << 1)
+#endif
+static int exchange(const char *a, const char *b)
+{
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 28))
+    return renameat2(AT_FDCWD, a, AT_FDCWD, b, RENAME_EXCHANGE);
+#elif defined(SYS_renameat2)
+    return (int)syscall(SYS_renameat2, AT_FDCWD, a, AT_FDCWD, b, RENAME_EXCHANGE);
+#else
+    (void)a;
+    (void)b;
+    errno = ENOSYS;
+    return -1;
+#endif
+}
+
+/* 1 when path exists, 0 when not; -1 (message in err) when it exists but is
+ * not a directory: a time directory is never written over a file. */
+static int dir_in_place(const char *path, const char *name, ump_err *err)
 {
     struct stat st;
-    return lstat(path, &st) == 0;
+    if (lstat(path, &st) != 0)
+        return 0;
+    if (S_ISDIR(st.st_mode))
+        return 1;
+    UMP_FAIL(err, UMP_ERR_IO, "%s: a %s named %s is in the way of time directory %s, which this "
+             "run writes; move or remove it (umppmFoam does not delete it)", path,
+             S_ISLNK(st.st_mode) ? "symbolic link" : S_ISREG(st.st_mode) ? "file" : "non-directory",
+             name, name);
+    return -1;
+}
+
+ump_status fio_timedir_check(const char *case_dir, const char *name, ump_err *err)
+{
+    char path[4200];
+    int n = snprintf(path, sizeof path, "%s/%s", case_dir, name);
+    UMP_CHECK(n > 0 && (size_t)n < sizeof path, err, UMP_ERR_INPUT, "%s: path too long", case_dir);
+    return dir_in_place(path, name, err) < 0 ? UMP_ERR_IO : UMP_OK;
 }
 
 ump_status fio_timedir_begin(const char *case_dir, const char *name,
@@ -340,7 +383,8 @@ ump_status fio_timedir_begin(const char *case_dir, const char *name,
               "%s: time name '%s' too long", case_dir, name);
     long pid = (long)getpid();
     int n1 = snprintf(td->final_dir, sizeof td->final_dir, "%s/%s", case_dir, name);
-    int n2 = snprintf(td->tmp_dir, sizeof td->tmp_dir, "%s/.%s.tmp.%ld", case_dir, name, pid);
+    int n2 = snprintf(td->tmp_dir, sizeof td->tmp_dir, "%s/" FIO_HIDDEN_FMT, case_dir, name,
+                      FIO_HIDDEN_TMP, pid);
     UMP_CHECK(n1 > 0 && n2 > 0 && (size_t)n1 < sizeof td->final_dir
                   && (size_t)n2 < sizeof td->tmp_dir,
               err, UMP_ERR_INPUT, "%s: path too long", case_dir);
@@ -349,6 +393,9 @@ ump_status fio_timedir_begin(const char *case_dir, const char *name,
     struct stat st;
     if (stat(case_dir, &st) != 0 || !S_ISDIR(st.st_mode))
         return UMP_FAIL(err, UMP_ERR_IO, "%s: case directory not found", case_dir);
+    /* a file where the time directory goes: refused before anything is written */
+    if (dir_in_place(td->final_dir, name, err) < 0)
+        return UMP_ERR_IO;
     /* a leftover of an earlier crashed run with the same pid */
     if (rm_tree(td->tmp_dir) != 0)
         return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot remove stale directory: %s",
@@ -363,7 +410,10 @@ ump_status fio_timedir_begin(const char *case_dir, const char *name,
 ump_status fio_timedir_commit(fio_timedir *td, ump_err *err)
 {
     UMP_CHECK(td && td->open, err, UMP_ERR_INPUT, "fio_timedir_commit: no open time directory");
-    if (!path_exists(td->final_dir)) {
+    int there = dir_in_place(td->final_dir, td->name, err);
+    if (there < 0)
+        return UMP_ERR_IO;
+    if (!there) {
         if (rename(td->tmp_dir, td->final_dir) != 0)
             return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot rename into place: %s",
                             td->final_dir, strerror(errno));
@@ -371,13 +421,29 @@ ump_status fio_timedir_commit(fio_timedir *td, ump_err *err)
         return UMP_OK;
     }
 
-    /* rename() cannot replace a non-empty directory: move the old one aside
-     * (hidden), move the new one in, then delete the old one. At every
-     * moment one complete version sits at final_dir or can be restored. */
+    /* Overwrite. First choice: swap the new directory and the old one in one
+     * atomic step, then delete the old one, now under the hidden temporary
+     * name. A kill at any instant leaves <name> complete (old or new) and at
+     * most a hidden .<name>.tmp.<pid>, which fio_recover removes. */
+    if (exchange(td->tmp_dir, td->final_dir) == 0) {
+        td->open = 0;
+        (void)rm_tree(td->tmp_dir); /* the old version: losing it loses nothing */
+        return UMP_OK;
+    }
+    int e = errno;
+    if (e != EINVAL && e != ENOSYS && e != EOPNOTSUPP && e != ENOTSUP)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot swap the new version into place: %s",
+                        td->final_dir, strerror(e));
+
+    /* No exchange on this filesystem: rename() cannot replace a non-empty
+     * directory, so move the old one aside (hidden, .<name>.old.<pid>), move
+     * the new one in, then delete the old one. A kill between the two
+     * renames leaves no <name> but the hidden old copy, which fio_recover
+     * renames back at the next start. */
     char old[4200];
     size_t case_len = strlen(td->final_dir) - strlen(td->name) - 1;
-    int n = snprintf(old, sizeof old, "%.*s/.%s.old.%ld", (int)case_len, td->final_dir,
-                     td->name, (long)getpid());
+    int n = snprintf(old, sizeof old, "%.*s/" FIO_HIDDEN_FMT, (int)case_len, td->final_dir,
+                     td->name, FIO_HIDDEN_OLD, (long)getpid());
     UMP_CHECK(n > 0 && (size_t)n < sizeof old, err, UMP_ERR_INPUT, "%s: path too long",
               td->final_dir);
     if (rm_tree(old) != 0)
@@ -387,7 +453,7 @@ ump_status fio_timedir_commit(fio_timedir *td, ump_err *err)
         return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot move the previous version aside: %s",
                         td->final_dir, strerror(errno));
     if (rename(td->tmp_dir, td->final_dir) != 0) {
-        int e = errno;
+        e = errno;
         /* put the previous version back; the new one stays in tmp_dir for
          * fio_timedir_abort() */
         (void)rename(old, td->final_dir);
@@ -399,6 +465,24 @@ ump_status fio_timedir_commit(fio_timedir *td, ump_err *err)
      * copy loses nothing, so it is not reported */
     (void)rm_tree(old);
     return UMP_OK;
+}
+
+ump_status fio_remove_timedir(const char *case_dir, const char *name, ump_err *err)
+{
+    char path[4200], del[4200];
+    int n1 = snprintf(path, sizeof path, "%s/%s", case_dir, name);
+    int n2 = snprintf(del, sizeof del, "%s/" FIO_HIDDEN_FMT, case_dir, name, FIO_HIDDEN_DEL,
+                      (long)getpid());
+    UMP_CHECK(n1 > 0 && n2 > 0 && (size_t)n1 < sizeof path && (size_t)n2 < sizeof del, err,
+              UMP_ERR_INPUT, "%s: path too long", case_dir);
+    struct stat st;
+    if (lstat(path, &st) != 0)
+        return errno == ENOENT ? UMP_OK
+                               : UMP_FAIL(err, UMP_ERR_IO, "%s: %s", path, strerror(errno));
+    UMP_CHECK(S_ISDIR(st.st_mode), err, UMP_ERR_IO, "%s: not a directory (not removed)", path);
+    if (rm_tree(del) != 0 || rename(path, del) != 0)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot remove (%s)", path, strerror(errno));
+    return fio_remove_dir(del, err);
 }
 
 void fio_timedir_abort(fio_timedir *td)

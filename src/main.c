@@ -2,7 +2,11 @@
  * main.c -- the umppmFoam application: OpenFOAM-style command line, banner
  * and log; the only place that prints errors and exits.
  *
- *   umppmFoam [-case DIR] [-checkMesh [-writeFields]] [-help] [-version]
+ *   umppmFoam [-case DIR] [-reseed] [-checkMesh [-writeFields]] [-help] [-version]
+ *
+ * Both the run and -checkMesh first recover or remove what killed runs left
+ * in the case (app_recover). The exit status is non-zero when the log could
+ * not be written to standard output (e.g. umppmFoam > /dev/full).
  *
  * -help also lists the keys of the UMPPM dictionary of system/fvSolution
  * (case_umppm_help: key, default, allowed values, help; the reader's table).
@@ -25,6 +29,7 @@
 #include "umppm/mesh2d.h"
 #include "umppm/polymesh.h"
 
+#include <errno.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -38,6 +43,7 @@ typedef struct app_opts {
     const char *case_dir;
     int check_mesh;
     int write_fields;
+    int reseed;
 } app_opts;
 
 static void usage(FILE *fp)
@@ -46,6 +52,9 @@ static void usage(FILE *fp)
             "\nUsage: umppmFoam [OPTIONS]\n"
             "options:\n"
             "  -case <dir>       Specify case directory to use (instead of the cwd)\n"
+            "  -reseed           Seed new particles from the fields on a restart: needed\n"
+            "                    when the start time has no cloud (lagrangian/<cloudName>),\n"
+            "                    which is otherwise an error; an existing cloud is not read\n"
             "  -checkMesh        Read the case, build the 2-D UMPPM pressure mesh and print\n"
             "                    its statistics (cells by polygon type, faces, patches, areas,\n"
             "                    non-orthogonality, skewness, stencil sizes), then exit\n"
@@ -264,9 +273,9 @@ done:
     return rc;
 }
 
-int main(int argc, char **argv)
+static int run(int argc, char **argv)
 {
-    app_opts o = {".", 0, 0};
+    app_opts o = {".", 0, 0, 0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (a[0] == '-' && a[1] == '-')
@@ -282,6 +291,8 @@ int main(int argc, char **argv)
                 fprintf(stderr, "--> umppmFoam FATAL ERROR: option -case: the directory name is empty\n");
                 return 1;
             }
+        } else if (strcmp(a, "-reseed") == 0) {
+            o.reseed = 1;
         } else if (strcmp(a, "-checkMesh") == 0) {
             o.check_mesh = 1;
         } else if (strcmp(a, "-writeFields") == 0) {
@@ -306,14 +317,19 @@ int main(int argc, char **argv)
 
     ump_err err;
     if (!o.check_mesh) {
-        if (app_run(o.case_dir, &err) != UMP_OK)
+        app_options ao = {o.reseed};
+        if (app_run(o.case_dir, &ao, &err) != UMP_OK)
             return fatal(&err);
         printf("End\n\n");
         return 0;
     }
+    if (o.reseed) {
+        fprintf(stderr, "--> umppmFoam FATAL ERROR: -reseed goes with a run, not with -checkMesh\n");
+        return 1;
+    }
     case_control ctl;
     printf("Create time\n\n");
-    if (case_read_control(o.case_dir, &ctl, &err) != UMP_OK)
+    if (app_recover(o.case_dir, &err) != UMP_OK || case_read_control(o.case_dir, &ctl, &err) != UMP_OK)
         return fatal(&err);
     char tname[256];
     double t0;
@@ -345,5 +361,19 @@ int main(int argc, char **argv)
     pmesh_free(&pm);
     if (rc == 0)
         printf("End\n\n");
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    int rc = run(argc, argv);
+    /* the log is the run's record: losing it is a failure */
+    errno = 0;
+    if ((fflush(stdout) != 0 || ferror(stdout)) && rc == 0) {
+        /* (a failed run has said why already) */
+        fprintf(stderr, "--> umppmFoam FATAL ERROR: standard output: cannot write the log (%s)\n",
+                errno ? strerror(errno) : "write error");
+        rc = 1;
+    }
     return rc;
 }

@@ -12,7 +12,18 @@
 #include "umppm/polymesh.h"
 #include "umppm/ump.h"
 
-ump_status app_run(const char *case_dir, ump_err *err);
+/* Command-line choices of a run. */
+typedef struct app_options {
+    int reseed;   /* -reseed: a restart seeds new particles from the fields
+                     instead of reading (or requiring) the start time's cloud */
+} app_options;
+
+/* Start-up recovery: the hidden directories killed runs left in case_dir
+ * are recovered or removed (fio_recover), one log line each. */
+ump_status app_recover(const char *case_dir, ump_err *err);
+/* The run; opt may be NULL (defaults). SIGINT/SIGTERM finish the current
+ * step, write it and return UMP_OK (stopAt writeNow). */
+ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err);
 
 /* The checks of a run before the mesh is read (used by -checkMesh too):
  * endTime not before the start time t0 (directory tname), then every

@@ -78,17 +78,55 @@ typedef struct fio_timedir {
     int open;
 } fio_timedir;
 
-/* Create the temporary directory for time name in case_dir. */
+/* Hidden names next to a time directory <name> while it is written
+ * (".<name>.tmp.<pid>"), while an overwrite moves the previous version
+ * aside where the filesystem has no RENAME_EXCHANGE (".<name>.old.<pid>"),
+ * and while purgeWrite deletes it (".<name>.del.<pid>"). fio_recover()
+ * knows them. */
+#define FIO_HIDDEN_FMT ".%s.%s.%ld"
+#define FIO_HIDDEN_TMP "tmp"
+#define FIO_HIDDEN_OLD "old"
+#define FIO_HIDDEN_DEL "del"
+
+/* UMP_ERR_IO when <case_dir>/<name> exists and is not a directory (a file
+ * in the way of a time directory to be written; it is never deleted). */
+ump_status fio_timedir_check(const char *case_dir, const char *name, ump_err *err);
+/* Create the temporary directory for time name in case_dir (refused, with
+ * nothing written, when a non-directory sits at <case_dir>/<name>). */
 ump_status fio_timedir_begin(const char *case_dir, const char *name,
                              fio_timedir *td, ump_err *err);
-/* Move it into place (an existing <case>/<name> is replaced only after the
- * new one is complete). */
+/* Move it into place. An existing <case>/<name> is replaced only after the
+ * new one is complete, by renameat2(RENAME_EXCHANGE) and the removal of the
+ * old version (killed at any instant: <name> is complete, old or new); where
+ * the filesystem refuses the exchange (EINVAL/ENOSYS), by two renames
+ * through .<name>.old.<pid>, which fio_recover() puts back after a kill
+ * between them. A non-directory at <name> is an error (never deleted). */
 ump_status fio_timedir_commit(fio_timedir *td, ump_err *err);
 /* Remove the temporary directory (after a failure). Safe to call twice. */
 void fio_timedir_abort(fio_timedir *td);
 
-/* Remove a directory tree (purgeWrite of old time directories). */
+/* Remove a directory tree. */
 ump_status fio_remove_dir(const char *path, ump_err *err);
+/* Remove time directory <case_dir>/<name> (purgeWrite): renamed to the
+ * hidden .<name>.del.<pid> first, so a kill never leaves a partial <name>. */
+ump_status fio_remove_timedir(const char *case_dir, const char *name, ump_err *err);
+
+/* ---- start-up recovery (src/fieldio_recover.c) --------------------------- */
+/* What fio_recover() did with one hidden directory. */
+typedef enum fio_recovery {
+    FIO_RECOVERED,     /* .<t>.old.<pid> renamed back to <t> (none was there) */
+    FIO_REMOVED_TMP,   /* .<t>.tmp.<pid>: an unfinished write, removed */
+    FIO_REMOVED_OLD,   /* .<t>.old.<pid> while <t> is in place: removed */
+    FIO_REMOVED_DEL,   /* .<t>.del.<pid>: an unfinished purgeWrite, removed */
+    FIO_LEFT_RUNNING,  /* its process <pid> is still running: left alone */
+    FIO_LEFT_BLOCKED   /* .<t>.old.<pid> while a non-directory is at <t>: kept */
+} fio_recovery;
+typedef void (*fio_recover_report)(void *ctx, fio_recovery what, const char *hidden,
+                                   const char *time_name, long pid);
+/* Recover or remove the hidden directories (FIO_HIDDEN_*) that killed runs
+ * left in case_dir; report (may be NULL) is called once per directory. The
+ * .old ones are handled before the .tmp ones. */
+ump_status fio_recover(const char *case_dir, fio_recover_report report, void *ctx, ump_err *err);
 
 /* Create directories along path (mkdir -p). */
 ump_status fio_mkdir_p(const char *path, ump_err *err);

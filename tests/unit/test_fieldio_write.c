@@ -871,8 +871,32 @@ static void test_timedir_atomic(void **state)
     free(text);
     assert_int_equal(count_entries(cas), 1); /* no hidden leftovers */
 
-    /* a plain file in the way is replaced too; commit twice is an error */
+    /* a plain file in the way is an error, before anything is written,
+     * and is kept */
     tu_write(cas, "0.2", "not a directory");
+    assert_int_equal(fio_timedir_check(cas, "0.2", &err), UMP_ERR_IO);
+    assert_non_null(strstr(err.msg, "a file named 0.2 is in the way of time directory 0.2"));
+    assert_int_equal(fio_timedir_check(cas, "0.1", &err), UMP_OK);
+    assert_int_equal(fio_timedir_check(cas, "0.3", &err), UMP_OK);
+    assert_int_equal(fio_timedir_begin(cas, "0.2", &td, &err), UMP_ERR_IO);
+    assert_int_equal(td.open, 0);
+    snprintf(path, sizeof path, "%s/0.2", cas);
+    text = slurp(path, NULL);
+    assert_string_equal(text, "not a directory");
+    free(text);
+    assert_int_equal(count_entries(cas), 2);
+    /* ... also when it appears after begin (commit refuses, abort cleans) */
+    assert_int_equal(unlink(path), 0);
+    assert_int_equal(fio_timedir_begin(cas, "0.2", &td, &err), UMP_OK);
+    put_file(td.tmp_dir, "U", "u");
+    tu_write(cas, "0.2", "late file");
+    assert_int_equal(fio_timedir_commit(&td, &err), UMP_ERR_IO);
+    fio_timedir_abort(&td);
+    text = slurp(path, NULL);
+    assert_string_equal(text, "late file");
+    free(text);
+    assert_int_equal(unlink(path), 0);
+    /* commit twice is an error */
     assert_int_equal(fio_timedir_begin(cas, "0.2", &td, &err), UMP_OK);
     put_file(td.tmp_dir, "U", "u");
     assert_int_equal(fio_timedir_commit(&td, &err), UMP_OK);
@@ -880,6 +904,11 @@ static void test_timedir_atomic(void **state)
     snprintf(path, sizeof path, "%s/0.2/U", cas);
     assert_true(exists(path));
     assert_int_equal(count_entries(cas), 2);
+
+    /* purgeWrite's removal leaves nothing, hidden or not */
+    assert_int_equal(fio_remove_timedir(cas, "0.2", &err), UMP_OK);
+    assert_int_equal(count_entries(cas), 1);
+    assert_int_equal(fio_remove_timedir(cas, "0.2", &err), UMP_OK); /* gone: fine */
 
     /* bad names and missing case */
     assert_int_equal(fio_timedir_begin(cas, "a/b", &td, &err), UMP_ERR_INPUT);
@@ -937,6 +966,84 @@ static void test_timedir_commit_failure(void **state)
     tu_rmtree(cas);
 }
 
+/* What fio_recover saw, for test_recover. */
+typedef struct seen {
+    int n;
+    fio_recovery what[8];
+    char hidden[8][64];
+} seen;
+
+static void note(void *ctx, fio_recovery what, const char *hidden, const char *tname, long pid)
+{
+    seen *s = ctx;
+    (void)tname;
+    (void)pid;
+    if (s->n < 8) {
+        s->what[s->n] = what;
+        snprintf(s->hidden[s->n], sizeof s->hidden[s->n], "%s", hidden);
+        s->n++;
+    }
+}
+
+static fio_recovery seen_what(const seen *s, const char *hidden)
+{
+    for (int i = 0; i < s->n; i++)
+        if (strcmp(s->hidden[i], hidden) == 0)
+            return s->what[i];
+    fail_msg("fio_recover did not report %s", hidden);
+    return FIO_LEFT_RUNNING;
+}
+
+/* Start-up recovery: .old without its time renamed back, .old with its
+ * time, .tmp and .del removed, a live process's left alone, other hidden
+ * names untouched. */
+static void test_recover(void **state)
+{
+    (void)state;
+    char cas[64], path[4200], name[128];
+    ump_err err;
+    tu_tmpdir(cas, sizeof cas);
+    const char *dirs[] = {".0.1.old.999999", ".0.2.old.999998", "0.2", ".0.3.tmp.999997",
+                          ".1e-05.del.999996", ".git", ".0.4.tmp.abc"};
+    for (size_t i = 0; i < sizeof dirs / sizeof dirs[0]; i++) {
+        snprintf(path, sizeof path, "%s/%s", cas, dirs[i]);
+        assert_int_equal(mkdir(path, 0777), 0);
+        put_file(path, "U", dirs[i]);
+    }
+    snprintf(name, sizeof name, ".0.5.tmp.%ld", (long)getppid()); /* a running process */
+    snprintf(path, sizeof path, "%s/%s", cas, name);
+    assert_int_equal(mkdir(path, 0777), 0);
+    tu_write(cas, ".0.6.tmp.999995", "a file, not the writer's"); /* not a directory: kept */
+    snprintf(path, sizeof path, "%s/.0.7.old.999994", cas); /* its time is a file: kept */
+    assert_int_equal(mkdir(path, 0777), 0);
+    tu_write(cas, "0.7", "in the way");
+    seen s = {0};
+    assert_int_equal(fio_recover(cas, note, &s, &err), UMP_OK);
+    assert_int_equal(s.n, 6);
+    assert_int_equal(seen_what(&s, ".0.7.old.999994"), FIO_LEFT_BLOCKED);
+    assert_int_equal(seen_what(&s, ".0.1.old.999999"), FIO_RECOVERED);
+    assert_int_equal(seen_what(&s, ".0.2.old.999998"), FIO_REMOVED_OLD);
+    assert_int_equal(seen_what(&s, ".0.3.tmp.999997"), FIO_REMOVED_TMP);
+    assert_int_equal(seen_what(&s, ".1e-05.del.999996"), FIO_REMOVED_DEL);
+    assert_int_equal(seen_what(&s, name), FIO_LEFT_RUNNING);
+    snprintf(path, sizeof path, "%s/0.1/U", cas);
+    char *text = slurp(path, NULL);
+    assert_string_equal(text, ".0.1.old.999999");
+    free(text);
+    snprintf(path, sizeof path, "%s/0.2/U", cas);
+    text = slurp(path, NULL);
+    assert_string_equal(text, "0.2");
+    free(text);
+    /* 0.1 0.2 .git .0.4.tmp.abc .0.5.tmp.<ppid> .0.6.tmp.999995 0.7 .0.7.old.999994 */
+    assert_int_equal(count_entries(cas), 8);
+    s.n = 0;
+    assert_int_equal(fio_recover(cas, note, &s, &err), UMP_OK);
+    assert_int_equal(s.n, 2); /* the live one and the blocked one again */
+    snprintf(path, sizeof path, "%s/missing", cas);
+    assert_int_equal(fio_recover(path, NULL, NULL, &err), UMP_ERR_IO);
+    tu_rmtree(cas);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -954,6 +1061,7 @@ int main(void)
         cmocka_unit_test(test_mkdir_p),
         cmocka_unit_test(test_timedir_atomic),
         cmocka_unit_test(test_timedir_commit_failure),
+        cmocka_unit_test(test_recover),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,311 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# test_nothing_lost.sh -- a run that fails or is killed never destroys good
+# time directories (issue 15, item 3). On the 20x20 cavity:
+#   1. overwrites (RENAME_EXCHANGE, and the two-rename fallback forced by the
+#      shim) replace the time directories and leave nothing hidden;
+#   2. hidden directories of killed runs are recovered or removed at
+#      start-up, with one log line each (also before startFrom latestTime);
+#   3. a restart without its cloud is an error naming the path; -reseed
+#      seeds;
+#   4. a file in the way of a time directory is an error (before the run
+#      when the write times are known, else at write time) and is kept;
+#   5. umppmFoam > /dev/full exits non-zero;
+#   6. SIGTERM and SIGINT: the current step is written, "End", exit 0;
+#   7. the divergence guard (UMPPM maxVelocity) stops the run naming the
+#      cell, the value and the time, exit non-zero, nothing written;
+#   8. the kill test: $KILLSHIM SIGKILLs a run with two overwrites and one
+#      new time at its k-th write-related call, for every k, with
+#      RENAME_EXCHANGE and with the fallback; after each kill every time
+#      directory complete before is intact (old or new version, by
+#      checksum; in the fallback possibly as .<t>.old.<pid>), and
+#      `umppmFoam -checkMesh` recovers and cleans: no hidden directory, no
+#      directory lost.
+set -eu -o pipefail
+
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/lib.sh"
+for v in UMPPMFOAM KILLSHIM; do
+    if [ -z "${!v:-}" ] || [ ! -e "${!v}" ]; then
+        echo "test_nothing_lost.sh: FAIL: $v is not set to an existing file" >&2
+        exit 2
+    fi
+done
+of_env || exit 2
+# the shim is not sanitized: ASan must accept a preloaded library before it
+export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0"
+work=$(mktemp -d "${TMPDIR:-/tmp}/umppm-lost.XXXXXX")
+base=$work/base
+make_case cavity "$base" >/dev/null || { echo "FAIL: cannot build cavity" >&2; exit 1; }
+setctl() { sed -i "s/^$2 .*/$2 $3;/" "$1/system/controlDict"; }
+setctl "$base" endTime 0.02
+setctl "$base" writeInterval 2
+
+fail=0
+ok() { echo "  ok   $*"; }
+bad() { echo "  FAIL $*"; fail=1; }
+# dirsum DIR: one checksum of every file under DIR (names and contents)
+dirsum() { (cd "$1" && find . -type f | LC_ALL=C sort | xargs -r md5sum) | md5sum | cut -c1-32; }
+hidden() { (cd "$1" && ls -A | grep '^\.' || true); }
+# ump DIR LOG ARGS...: run umppmFoam in DIR, log in DIR/log.LOG, stderr in
+# DIR/err.LOG; sets rc
+ump() {
+    local d=$1 l=$2
+    shift 2
+    rc=0
+    timeout 120 "$UMPPMFOAM" -case "$d" "$@" >"$d/log.$l" 2>"$d/err.$l" || rc=$?
+}
+fresh() { rm -rf "$work/$1"; cp -R "$base" "$work/$1"; echo "$work/$1"; }
+
+echo "== 1. overwrites"
+d=$(fresh over)
+ump "$d" first
+s1=$(dirsum "$d/0.01") s2=$(dirsum "$d/0.02")
+setctl "$d" deltaT 0.0025
+setctl "$d" writeInterval 4
+ump "$d" second
+if [ "$rc" -eq 0 ] && [ "$(dirsum "$d/0.01")" != "$s1" ] && [ "$(dirsum "$d/0.02")" != "$s2" ] &&
+    [ -z "$(hidden "$d")" ] && [ -f "$d/0.02/lagrangian/umppmCloud/positions" ]; then
+    ok "RENAME_EXCHANGE overwrite of 0.01 and 0.02, nothing hidden left"
+else
+    bad "exchange overwrite: exit $rc, hidden '$(hidden "$d")'"
+fi
+s1=$(dirsum "$d/0.01")
+setctl "$d" deltaT 0.005
+setctl "$d" writeInterval 2
+rc=0
+LD_PRELOAD=$KILLSHIM UMPPM_KILL_NOEXCHANGE=1 "$UMPPMFOAM" -case "$d" >"$d/log.third" 2>&1 || rc=$?
+if [ "$rc" -eq 0 ] && [ "$(dirsum "$d/0.01")" != "$s1" ] && [ -z "$(hidden "$d")" ]; then
+    ok "two-rename overwrite (RENAME_EXCHANGE refused by the shim), nothing hidden left"
+else
+    bad "fallback overwrite: exit $rc, hidden '$(hidden "$d")'"
+fi
+
+d=$(fresh purge)
+setctl "$d" purgeWrite 1
+ump "$d" purge
+if [ "$rc" -eq 0 ] && [ ! -e "$d/0.01" ] && [ -f "$d/0.02/U" ] && [ -z "$(hidden "$d")" ]; then
+    ok "purgeWrite 1 (through .<t>.del.<pid>): 0.01 removed, 0.02 kept, nothing hidden left"
+else
+    bad "purgeWrite: exit $rc, hidden '$(hidden "$d")'"
+fi
+
+echo "== 2. start-up recovery"
+d=$(fresh recover)
+ump "$d" first
+s1=$(dirsum "$d/0.01") s2=$(dirsum "$d/0.02")
+mv "$d/0.01" "$d/.0.01.old.999999"                      # killed between the two renames
+mkdir "$d/.0.02.tmp.999998" && echo partial > "$d/.0.02.tmp.999998/U"   # killed while writing
+cp -R "$d/0.02" "$d/.0.02.old.999997"                    # killed while deleting the old copy
+mkdir "$d/.0.015.del.999996"                             # killed during purgeWrite
+mkdir "$d/.0.03.tmp.$$"                                  # this (running) shell's: left alone
+ump "$d" check -checkMesh
+if [ "$rc" -eq 0 ] &&
+    grep -qx 'Recovered time 0.01 from .0.01.old.999999 (a run was killed during its overwrite)' "$d/log.check" &&
+    grep -q '^Removed incomplete .0.02.tmp.999998 ' "$d/log.check" &&
+    grep -q '^Removed .0.02.old.999997 (the previous version of time 0.02; the new one is in place)' "$d/log.check" &&
+    grep -q '^Removed .0.015.del.999996 ' "$d/log.check" &&
+    grep -q "Warning: .0.03.tmp.$$ left alone: process $$ is running" "$d/log.check" &&
+    [ "$(dirsum "$d/0.01")" = "$s1" ] && [ "$(dirsum "$d/0.02")" = "$s2" ] &&
+    [ "$(hidden "$d")" = ".0.03.tmp.$$" ]; then
+    ok "recovered 0.01 from .old, removed .tmp/.old/.del, left a live process's alone:"
+    grep -E '^(Recovered|Removed)|left alone' "$d/log.check" | sed 's/^/         /'
+else
+    bad "recovery: exit $rc, hidden '$(hidden "$d")'"; cat "$d/log.check" "$d/err.check" | grep -E 'Recover|Remov|alone|ERROR'
+fi
+rmdir "$d/.0.03.tmp.$$"
+# a latestTime restart sees the recovered directory
+mv "$d/0.02" "$d/.0.02.old.999995"
+setctl "$d" startFrom latestTime
+setctl "$d" endTime 0.03
+ump "$d" restart
+if [ "$rc" -eq 0 ] && grep -q '^Recovered time 0.02 from .0.02.old.999995' "$d/log.restart" &&
+    grep -q '^Create mesh for time = 0.02' "$d/log.restart" &&
+    grep -q '^Restart: 400 particles read from 0.02' "$d/log.restart" && [ -d "$d/0.03" ]; then
+    ok "startFrom latestTime restarts from the recovered 0.02"
+else
+    bad "latestTime after recovery: exit $rc"; tail -3 "$d/err.restart"
+fi
+
+echo "== 3. restart without its cloud"
+rm -rf "$d/0.03" "$d/0.02/lagrangian"
+ump "$d" nocloud
+msg=$(head -n 1 "$d/err.nocloud")
+if [ "$rc" -ne 0 ] && [ "$rc" -lt 128 ] &&
+    printf '%s' "$msg" | grep -q '0.02/lagrangian/umppmCloud/positions: not found: the restart from time 0.02 has no particle cloud .*-reseed' &&
+    [ ! -e "$d/0.03" ]; then
+    ok "refused: $msg"
+else
+    bad "restart without a cloud: exit $rc, '$msg'"
+fi
+ump "$d" reseed -reseed
+if [ "$rc" -eq 0 ] && grep -q '^Restart: -reseed: particles seeded from the fields of time 0.02' "$d/log.reseed" &&
+    [ -f "$d/0.03/lagrangian/umppmCloud/positions" ]; then
+    ok "-reseed seeds and runs"
+else
+    bad "-reseed: exit $rc"
+fi
+
+echo "== 4. a file in the way of a time directory"
+d=$(fresh file)
+echo keep > "$d/0.02"
+ump "$d" known
+msg=$(head -n 1 "$d/err.known")
+if [ "$rc" -eq 1 ] && printf '%s' "$msg" | grep -q '0.02: a file named 0.02 is in the way of time directory 0.02' &&
+    [ "$(cat "$d/0.02")" = keep ] && [ ! -e "$d/0.01" ] && ! grep -q '^Time = ' "$d/log.known"; then
+    ok "refused before the run (writeControl timeStep): $msg"
+else
+    bad "file in the way (known write times): exit $rc, '$msg'"
+fi
+sed -i 's/^writeControl .*/writeControl adjustableRunTime;/; s/^writeInterval .*/writeInterval 0.01;/' "$d/system/controlDict"
+echo 'adjustTimeStep yes; maxCo 0.5;' >> "$d/system/controlDict"
+ump "$d" adjustable
+msg=$(head -n 1 "$d/err.adjustable")
+if [ "$rc" -eq 1 ] && printf '%s' "$msg" | grep -q 'a file named 0.02 is in the way' &&
+    [ "$(cat "$d/0.02")" = keep ] && [ -d "$d/0.01" ] && [ -z "$(hidden "$d")" ]; then
+    ok "refused at write time (adjustTimeStep), 0.01 written, the file kept"
+else
+    bad "file in the way (adjustTimeStep): exit $rc, '$msg'"
+fi
+
+echo "== 5. standard output full"
+d=$(fresh full)
+rc=0
+"$UMPPMFOAM" -case "$d" >/dev/full 2>"$d/err.full" || rc=$?
+if [ "$rc" -eq 1 ] && grep -q 'standard output: cannot write the log' "$d/err.full"; then
+    ok "run > /dev/full: exit 1, $(head -n 1 "$d/err.full")"
+else
+    bad "run > /dev/full: exit $rc"
+fi
+rc=0
+"$UMPPMFOAM" -help >/dev/full 2>"$d/err.help" || rc=$?
+[ "$rc" -eq 1 ] && ok "-help > /dev/full: exit 1" || bad "-help > /dev/full: exit $rc"
+
+echo "== 6. SIGTERM and SIGINT"
+for sig in TERM INT; do
+    d=$(fresh sig$sig)
+    setctl "$d" endTime 1000
+    setctl "$d" writeInterval 100000
+    "$UMPPMFOAM" -case "$d" >"$d/log.run" 2>"$d/err.run" &
+    pid=$!
+    for _ in $(seq 600); do
+        [ "$(grep -c '^Time = ' "$d/log.run" || true)" -ge 3 ] && break
+        sleep 0.1
+    done
+    kill -"$sig" "$pid"
+    rc=0
+    wait "$pid" || rc=$?
+    last=$(sed -n 's/^Time = //p' "$d/log.run" | tail -n 1)
+    if [ "$rc" -eq 0 ] && grep -q "^sigStopAtWriteNow : SIG$sig received: time $last written, stopping" "$d/log.run" &&
+        [ "$(tail -n 2 "$d/log.run" | head -n 1)" = End ] && [ -f "$d/$last/U" ] &&
+        [ -f "$d/$last/lagrangian/umppmCloud/positions" ] && [ -z "$(hidden "$d")" ]; then
+        ok "SIG$sig: time $last written, End, exit 0"
+    else
+        bad "SIG$sig: exit $rc, last time '$last'"; tail -n 4 "$d/log.run"
+    fi
+done
+
+echo "== 7. divergence guard"
+d=$(fresh diverge)
+setctl "$d" writeInterval 1
+grep -q '^Divergence guard: |U| <= 100 (100 x the speed scale of the start fields)' "$work/over/log.first" &&
+    ok "default bound logged: 100 x max(boundary |U| 1, ...)" || bad "default guard line"
+printf 'UMPPM\n{\n    maxVelocity 0.5;\n}\n' >> "$d/system/fvSolution"
+ump "$d" run
+msg=$(head -n 1 "$d/err.run")
+if [ "$rc" -eq 1 ] && printf '%s' "$msg" | grep -Eq 'diverged at time 0.005: \|U\| = [0-9.e+-]+ (in cell [0-9]+|of particle [0-9]+) at \([^)]*\) exceeds the bound 0.5 \(UMPPM maxVelocity\); time 0.005 is not written' &&
+    [ "$(ls "$d" | grep -c '^[0-9]')" -eq 1 ] && [ -z "$(hidden "$d")" ]; then
+    ok "stopped: $msg"
+else
+    bad "divergence: exit $rc, '$msg'"
+fi
+
+echo "== 8. kill test"
+# old state: 0.01 and 0.02 written with deltaT 0.0025; the killed run
+# (deltaT 0.005, endTime 0.03) overwrites them and writes 0.03
+old=$(fresh killold)
+setctl "$old" deltaT 0.0025
+setctl "$old" writeInterval 4
+ump "$old" old
+setctl "$old" deltaT 0.005
+setctl "$old" writeInterval 2
+setctl "$old" endTime 0.03
+rm -f "$old"/log.* "$old"/err.*
+declare -A OLD NEW
+for t in 0 0.01 0.02; do OLD[$t]=$(dirsum "$old/$t"); done
+ref=$work/killref
+cp -R "$old" "$ref"
+rc=0
+LD_PRELOAD=$KILLSHIM UMPPM_KILL_COUNT=$work/count "$UMPPMFOAM" -case "$ref" >/dev/null 2>&1 || rc=$?
+ncalls=$(cat "$work/count" 2>/dev/null || echo 0)
+for t in 0 0.01 0.02 0.03; do NEW[$t]=$(dirsum "$ref/$t"); done
+[ "$rc" -eq 0 ] && [ "$ncalls" -gt 20 ] || { bad "counting run: exit $rc, $ncalls calls"; ncalls=0; }
+echo "  the run makes $ncalls write-related calls"
+trials=0 lost=0 kfail=0 recovered=0 removed=0
+for mode in exchange fallback; do
+    nox=0
+    [ $mode = fallback ] && nox=1
+    for k in $(seq 1 "$ncalls"); do
+        d=$work/kill
+        rm -rf "$d"
+        cp -R "$old" "$d"
+        # (in a subshell, whose "Killed" notice goes to /dev/null)
+        rc=$( (LD_PRELOAD=$KILLSHIM UMPPM_KILL_AT=$k UMPPM_KILL_NOEXCHANGE=$nox "$UMPPMFOAM" -case "$d" \
+            >/dev/null 2>&1; echo $?) 2>/dev/null)
+        trials=$((trials + 1))
+        why=""
+        [ "$rc" -eq 137 ] || why="exit $rc, not killed"
+        # right after the kill: each old time complete, old or new version
+        for t in 0 0.01 0.02; do
+            if [ -d "$d/$t" ]; then
+                s=$(dirsum "$d/$t")
+                [ "$s" = "${OLD[$t]}" ] || [ "$s" = "${NEW[$t]}" ] || why="$why; $t corrupt after the kill"
+            else
+                o=$(ls -d "$d/.$t.old."* 2>/dev/null | head -n 1)
+                if [ $mode = exchange ] || [ -z "$o" ] || [ "$(dirsum "$o")" != "${OLD[$t]}" ]; then
+                    why="$why; $t missing after the kill"
+                fi
+            fi
+        done
+        if [ -d "$d/0.03" ] && [ "$(dirsum "$d/0.03")" != "${NEW[0.03]}" ]; then
+            why="$why; 0.03 incomplete"
+        fi
+        # the restart's recovery
+        rc=0
+        "$UMPPMFOAM" -case "$d" -checkMesh >"$d/log.recover" 2>&1 || rc=$?
+        [ "$rc" -eq 0 ] || why="$why; recovery exit $rc"
+        recovered=$((recovered + $(grep -c '^Recovered time' "$d/log.recover" || true)))
+        removed=$((removed + $(grep -c '^Removed' "$d/log.recover" || true)))
+        [ -z "$(hidden "$d")" ] || why="$why; left hidden: $(hidden "$d" | tr '\n' ' ')"
+        for t in 0 0.01 0.02; do
+            if [ ! -d "$d/$t" ]; then
+                lost=$((lost + 1))
+                why="$why; $t lost"
+            else
+                s=$(dirsum "$d/$t")
+                if [ "$s" != "${OLD[$t]}" ] && [ "$s" != "${NEW[$t]}" ]; then
+                    lost=$((lost + 1))
+                    why="$why; $t corrupt"
+                fi
+            fi
+        done
+        if [ -n "$why" ]; then
+            kfail=$((kfail + 1))
+            [ "$kfail" -le 10 ] && echo "  FAIL $mode k=$k:$why"
+        fi
+    done
+done
+echo "  kill test: $trials trials ($ncalls calls x 2 modes), $kfail failed, $lost time directories lost;" \
+    "recovery logged $recovered recovered, $removed removed"
+if [ "$kfail" -eq 0 ] && [ "$lost" -eq 0 ] && [ "$trials" -ge 20 ] && [ "$recovered" -gt 0 ]; then
+    ok "kill test: $trials trials, 0 lost"
+else
+    bad "kill test"
+fi
+
+if [ "$fail" -ne 0 ]; then
+    echo "test_nothing_lost.sh: FAIL (work dir $work)"
+    exit 1
+fi
+rm -rf "$work"
+echo "test_nothing_lost.sh: all passed"
