@@ -99,7 +99,7 @@ check: deps
 # -Wno-pass-failed: at -O1 under the sanitizers clang does not vectorise the
 # kernels' `omp simd` loops (a hint, not a requirement).
 asan:
-	$(MAKE) BUILD=build/asan CC=clang WERROR=-Werror OPT="-O1 -g -fno-omit-frame-pointer" \
+	UMPPM_KILL_STRIDE=4 $(MAKE) BUILD=build/asan CC=clang WERROR=-Werror OPT="-O1 -g -fno-omit-frame-pointer" \
 	    SAN="-fsanitize=address,undefined -fno-sanitize-recover=all -Wno-pass-failed" unit integration
 
 debug:
