@@ -862,6 +862,13 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     printf("Reading transportProperties\n\n");
     if ((rc = read_settings(&a, err)) != UMP_OK)
         goto done;
+    if (a.opt.no_function_objects && (a.fo.n || a.fo.nsf)) {
+        /* -noFunctionObjects: read (so a broken entry is still refused), not run */
+        printf("Function objects: %d in system/controlDict, not run (-noFunctionObjects)\n\n",
+               a.fo.n + a.fo.nsf);
+        fob_free(&a.fo);
+        memset(&a.fo, 0, sizeof a.fo);
+    }
     if (a.bu.on && (rc = read_buoyant(&a, tname, err)) != UMP_OK)
         goto done;
     if ((rc = read_start_field(&a, tname, "p", 1, a.bu.on, &a.p, err)) != UMP_OK ||

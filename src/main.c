@@ -2,7 +2,7 @@
  * main.c -- the umppmFoam application: OpenFOAM-style command line, banner
  * and log; the only place that prints errors and exits.
  *
- *   umppmFoam [-case DIR] [-reseed] [-checkMesh [-writeFields]] [-help] [-version]
+ *   umppmFoam [-case DIR] [-reseed] [-noFunctionObjects] [-checkMesh [-writeFields]] [-help] [-version]
  *
  * Both the run and -checkMesh first recover or remove what killed runs left
  * in the case (app_recover). The exit status is non-zero when the log could
@@ -44,6 +44,7 @@ typedef struct app_opts {
     int check_mesh;
     int write_fields;
     int reseed;
+    int no_fo;
 } app_opts;
 
 static void usage(FILE *fp)
@@ -55,6 +56,8 @@ static void usage(FILE *fp)
             "  -reseed           Seed new particles from the fields on a restart: needed\n"
             "                    when the start time has no cloud (lagrangian/<cloudName>),\n"
             "                    which is otherwise an error; an existing cloud is not read\n"
+            "  -noFunctionObjects  Do not execute function objects (they are still read\n"
+            "                    and checked)\n"
             "  -checkMesh        Read the case, build the 2-D UMPPM pressure mesh and print\n"
             "                    its statistics (cells by polygon type, faces, patches, areas,\n"
             "                    non-orthogonality, skewness, stencil sizes), then exit\n"
@@ -275,7 +278,7 @@ done:
 
 static int run(int argc, char **argv)
 {
-    app_opts o = {".", 0, 0, 0};
+    app_opts o = {".", 0, 0, 0, 0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (a[0] == '-' && a[1] == '-')
@@ -293,6 +296,8 @@ static int run(int argc, char **argv)
             }
         } else if (strcmp(a, "-reseed") == 0) {
             o.reseed = 1;
+        } else if (strcmp(a, "-noFunctionObjects") == 0) {
+            o.no_fo = 1;
         } else if (strcmp(a, "-checkMesh") == 0) {
             o.check_mesh = 1;
         } else if (strcmp(a, "-writeFields") == 0) {
@@ -317,7 +322,7 @@ static int run(int argc, char **argv)
 
     ump_err err;
     if (!o.check_mesh) {
-        app_options ao = {o.reseed};
+        app_options ao = {o.reseed, o.no_fo};
         if (app_run(o.case_dir, &ao, &err) != UMP_OK)
             return fatal(&err);
         printf("End\n\n");

@@ -16,6 +16,8 @@
 typedef struct app_options {
     int reseed;   /* -reseed: a restart seeds new particles from the fields
                      instead of reading (or requiring) the start time's cloud */
+    int no_function_objects; /* -noFunctionObjects: controlDict's functions
+                                are read and checked but not run */
 } app_options;
 
 /* Start-up recovery: the hidden directories killed runs left in case_dir

@@ -10,7 +10,8 @@
 # (continuity, walls at zero flux, both sides of cyclic pairs); every step
 # has a pressure line in OpenFOAM's solver-line form with a final residual
 # at round-off, and continuity lines whose values foamLog's default
-# selectors (`sum local =`, `global =`, `cumulative =`) all find.
+# selectors (`sum local =`, `global =`, `cumulative =`) all find. And
+# -noFunctionObjects reads controlDict's functions but does not run them.
 set -eu -o pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
@@ -131,6 +132,28 @@ PY
 run_case cavity-ascii cavity ascii
 run_case cavity-binary cavity binary
 run_case periodic periodicSquare ascii
+
+# -noFunctionObjects: a function object of controlDict is read but not run
+c=$work/nofo
+if make_case cavity "$c" >/dev/null; then
+    sed -i -e "s/^endTime .*/endTime 0.01;/" "$c/system/controlDict"
+    echo 'functions { pLid { type surfaceFieldValue; libs ("libfieldFunctionObjects.so"); regionType patch;
+        name movingWall; operation areaAverage; fields (p); writeFields false; writeControl timeStep; } }' \
+        >> "$c/system/controlDict"
+    rc=0
+    (cd "$c" && "$UMPPMFOAM" -noFunctionObjects) >"$c/log.nofo" 2>&1 || rc=$?
+    if [ "$rc" -ne 0 ] || [ -e "$c/postProcessing" ] || ! grep -q "not run (-noFunctionObjects)" "$c/log.nofo"; then
+        echo "FAIL  -noFunctionObjects: exit $rc, postProcessing $( [ -e "$c/postProcessing" ] && echo written || echo absent)"
+        nfail=$((nfail + 1))
+    elif ! (cd "$c" && "$UMPPMFOAM") >"$c/log.fo" 2>&1 || [ ! -d "$c/postProcessing/pLid" ]; then
+        echo "FAIL  function object without -noFunctionObjects: no postProcessing/pLid"
+        nfail=$((nfail + 1))
+    else
+        echo "ok    -noFunctionObjects: not run; without it postProcessing/pLid is written"
+    fi
+else
+    echo "FAIL  -noFunctionObjects: cannot build the cavity"; nfail=$((nfail + 1))
+fi
 
 if [ "$nfail" -gt 0 ]; then
     echo "test_phi_log.sh: $nfail FAILED (cases in $work)"
