@@ -5,7 +5,10 @@
  * (vectorField), faces (faceList or faceCompactList), owner and neighbour
  * (labelList), boundary (polyBoundaryMesh: a list of "name { dict }").
  * The number of cells is 1 + the largest owner/neighbour label, as OpenFOAM
- * computes it. pmesh_check() then verifies the topology so that later
+ * computes it (bounded by nFaces/2 before any per-cell allocation).
+ * pmesh_check() then verifies the topology (the checks of OpenFOAM's
+ * checkMesh -allTopology that matter here: vertex labels, duplicate faces,
+ * closed cells by edges and by area vectors) so that later
  * stages can index without bounds checks.
  */
 #include "umppm/polymesh.h"
