@@ -5,7 +5,7 @@
 #                   integration tests, then all of them again under ASan/UBSan)
 #   make asan       unit and integration tests under AddressSanitizer + UBSan (clang)
 #   make debug      -O0 -g -DUMP_DEBUG build in build/debug
-#   make fuzz       libFuzzer harness for the FoamFile reader (clang)
+#   make fuzz       libFuzzer harnesses: FoamFile, polyMesh + 2-D mesh, field reader (clang)
 #   make deps       install the Debian packages (apt-get, needs root or sudo)
 # Every build uses OpenMP (gcc's -fopenmp/libgomp; clang's libomp for the
 # sanitizer build): OMP_NUM_THREADS sets the solver's threads.
@@ -105,10 +105,13 @@ asan:
 debug:
 	$(MAKE) BUILD=build/debug OPT="-O0 -g -DUMP_DEBUG" all
 
-fuzz: $(BUILD)/fuzz_foam
-$(BUILD)/fuzz_foam: tests/fuzz/fuzz_foam.c $(LIB_SRC)
+# Harnesses: the FoamFile reader, the polyMesh reader + 2-D mesh, the field
+# reader (tests/fuzz/; corpora tests/fuzz/corpus*, README "Tests").
+FUZZERS = $(BUILD)/fuzz_foam $(BUILD)/fuzz_polymesh $(BUILD)/fuzz_field
+fuzz: $(FUZZERS)
+$(BUILD)/fuzz_%: tests/fuzz/fuzz_%.c $(LIB_SRC) $(wildcard include/umppm/*.h) $(wildcard src/*.h)
 	@mkdir -p $(dir $@)
-	clang $(CPPFLAGS) -std=c11 -g -O1 -fsanitize=fuzzer,address,undefined -o $@ $^ $(LDLIBS)
+	clang $(CPPFLAGS) -std=c11 -g -O1 -fsanitize=fuzzer,address,undefined -o $@ $< $(LIB_SRC) $(LDLIBS)
 
 deps:
 	@missing=""; for p in $(DEB_PACKAGES); do \

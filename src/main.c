@@ -26,6 +26,7 @@
 #include "umppm/case.h"
 #include "umppm/field.h"
 #include "umppm/fieldio.h"
+#include "umppm/lsq.h"
 #include "umppm/mesh2d.h"
 #include "umppm/polymesh.h"
 
@@ -349,10 +350,14 @@ static int run(int argc, char **argv)
     mesh2d *m = NULL;
     if (pmesh_read(pmdir, &pm, &err) != UMP_OK)
         return fatal(&err);
-    if (mesh_build(pm, &m, &err) != UMP_OK) {
+    /* every mesh check of a run: the least-squares gradient's stencils too */
+    lsq_grad *g = NULL;
+    if (mesh_build(pm, &m, &err) != UMP_OK || lsq_build(m, &g, &err) != UMP_OK) {
+        mesh_free(&m);
         pmesh_free(&pm);
         return fatal(&err);
     }
+    lsq_free(&g);
     int rc = 0;
     if (app_check_settings(o.case_dir, pm, m, &err) != UMP_OK) {
         mesh_free(&m);

@@ -148,7 +148,19 @@ static ump_status find_plane(const pmesh *pm, mesh2d *m, const char *dir, ump_er
         for (ump_idx f = pp->start; f < pp->start + pp->n; f++) {
             double A[3];
             face_area_vector(pm, f, A);
-            double a = sqrt(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]);
+            double a = sqrt(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]), per = 0;
+            for (ump_idx i = pm->face_off[f]; i < pm->face_off[f + 1]; i++) {
+                ump_idx j = i + 1 < pm->face_off[f + 1] ? i + 1 : pm->face_off[f];
+                const double *p0 = pm->points + 3 * (size_t)pm->face_pts[i];
+                const double *p1 = pm->points + 3 * (size_t)pm->face_pts[j];
+                per += sqrt((p1[0] - p0[0]) * (p1[0] - p0[0]) + (p1[1] - p0[1]) * (p1[1] - p0[1]) +
+                            (p1[2] - p0[2]) * (p1[2] - p0[2]));
+            }
+            if (!(a > 1e-12 * per * per))
+                return UMP_FAIL(err, UMP_ERR_INPUT,
+                                "%s/points: cell %ld has zero area: its face %ld on empty patch '%s' has "
+                                "area %g (collapsed or collinear points; checkMesh: Zero or negative cell "
+                                "volume)", dir, (long)pm->owner[f], (long)f, pp->name, a);
             if (!(fabs(A[k]) > (1 - 1e-6) * a))
                 return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
                                 "%s/faces: face %ld of empty patch '%s' is not normal to %c: umppmFoam "
@@ -477,6 +489,14 @@ static ump_status build_faces(const pmesh *pm, mesh2d *m, const char *dir,
                                 "%s/boundary: face %ld of cyclic patch '%s' does not match face %ld of '%s' "
                                 "under the translation (%g %g) (mismatch %g m)",
                                 dir, (long)k, pa->name, (long)k, pb->name, sep[0], sep[1], mis);
+            if (pm->owner[fa] == pm->owner[fb])
+                return UMP_FAIL(err, UMP_ERR_INPUT,
+                                "%s/boundary: cell %ld owns face %ld of cyclic patch '%s' and its partner "
+                                "face %ld of '%s': the mesh is one cell wide between the pair, so the cell "
+                                "is its own periodic neighbour and its stencil (least-squares gradient, "
+                                "Eq. 26) is degenerate; umppmFoam needs at least 2 cells between cyclic "
+                                "patches (3 or more for a centred stencil)",
+                                dir, (long)pm->owner[fa], (long)fa, pa->name, (long)fb, pb->name);
             set_face(m, i, v0, v1, n, len);
             m->owner[i] = pm->owner[fa];
             m->neigh[i] = pm->owner[fb];
@@ -682,6 +702,8 @@ static ump_status stencil_union(ump_idx nc, const ump_idx *ooff, const ump_idx *
                     cnt++;
                 }
             }
+            if (!pass && (int64_t)off[c] + cnt > UMP_IDX_MAX)
+                return UMP_ERR_INPUT;
             if (!pass)
                 off[c + 1] = off[c] + cnt;
             else
@@ -719,9 +741,16 @@ static ump_status build_stencils(mesh2d *m, const char *dir, ump_err *err)
             vcell[voff[v] + fill[v]++] = c;
         }
     /* N1(c): the cells of c's vertices; N2(c): N1(c) and the N1 of each */
-    if (stencil_union(nc, m->cell_off, m->cell_verts, m->vert_id, voff, vcell, 0, mark, m->n1_off, &m->n1) !=
-            UMP_OK ||
-        stencil_union(nc, m->n1_off, m->n1, NULL, m->n1_off, m->n1, 1, mark, m->n2_off, &m->n2) != UMP_OK)
+    ump_status su = stencil_union(nc, m->cell_off, m->cell_verts, m->vert_id, voff, vcell, 0, mark,
+                                  m->n1_off, &m->n1);
+    if (su == UMP_OK)
+        su = stencil_union(nc, m->n1_off, m->n1, NULL, m->n1_off, m->n1, 1, mark, m->n2_off, &m->n2);
+    if (su == UMP_ERR_INPUT) {
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: the vertex-neighbour stencils hold more than %d entries "
+                      "(points shared by very many cells?)", dir, UMP_IDX_MAX);
+        goto done;
+    }
+    if (su != UMP_OK)
         goto nomem;
     nbuf = (size_t)m->n2_off[nc];
     if (m->has_cyclic) {

@@ -5,13 +5,17 @@
  * (vectorField), faces (faceList or faceCompactList), owner and neighbour
  * (labelList), boundary (polyBoundaryMesh: a list of "name { dict }").
  * The number of cells is 1 + the largest owner/neighbour label, as OpenFOAM
- * computes it. pmesh_check() then verifies the topology so that later
+ * computes it (bounded by nFaces/2 before any per-cell allocation).
+ * pmesh_check() then verifies the topology (the checks of OpenFOAM's
+ * checkMesh -allTopology that matter here: vertex labels, duplicate faces,
+ * closed cells by edges and by area vectors) so that later
  * stages can index without bounds checks.
  */
 #include "umppm/polymesh.h"
 #include "umppm/foam.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -225,9 +229,13 @@ static ump_status read_patch(const foam_dict *d, const char *name, pmesh_patch *
     UMP_CALL(foam_get_word(d, "type", &type, err));
     UMP_CALL(foam_get_label(d, "nFaces", &nf, err));
     UMP_CALL(foam_get_label(d, "startFace", &sf, err));
-    if (nf < 0 || sf < 0 || nf > UMP_IDX_MAX || sf > UMP_IDX_MAX)
-        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: patch '%s' has nFaces %lld startFace %lld",
-                        path, d->line, name, (long long)nf, (long long)sf);
+    const char *bad = nf < 0 || nf > UMP_IDX_MAX ? "nFaces" : sf < 0 || sf > UMP_IDX_MAX ? "startFace" : NULL;
+    if (bad) {
+        const foam_entry *e = foam_dict_find(d, bad, 0);
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: patch '%s': %s %lld is out of range (0 to %d)",
+                        path, e ? e->line : d->line, name, bad, (long long)(bad[0] == 'n' ? nf : sf),
+                        UMP_IDX_MAX);
+    }
     if (!(p->type = ump_strdup(type)))
         return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
     p->kind = patch_kind(type);
@@ -309,65 +317,278 @@ done:
     return rc;
 }
 
-ump_status pmesh_check(const pmesh *m, ump_err *err)
+/* Newell area vector of face f (|A| = area, right-hand rule). */
+static void face_area(const pmesh *m, ump_idx f, double A[3])
+{
+    A[0] = A[1] = A[2] = 0.0;
+    ump_idx b = m->face_off[f], e = m->face_off[f + 1];
+    for (ump_idx i = b; i < e; i++) {
+        const double *p = m->points + 3 * (size_t)m->face_pts[i];
+        const double *q = m->points + 3 * (size_t)m->face_pts[i + 1 < e ? i + 1 : b];
+        A[0] += 0.5 * (p[1] - q[1]) * (p[2] + q[2]);
+        A[1] += 0.5 * (p[2] - q[2]) * (p[0] + q[0]);
+        A[2] += 0.5 * (p[0] - q[0]) * (p[1] + q[1]);
+    }
+}
+
+/* Per-face point labels (range, repeats: OpenFOAM's checkFaceVertices). */
+static ump_status check_face_vertices(const pmesh *m, ump_err *err)
 {
     const char *d = m->dir;
     for (ump_idx f = 0; f < m->nfaces; f++) {
-        ump_idx n = m->face_off[f + 1] - m->face_off[f];
+        ump_idx b = m->face_off[f], n = m->face_off[f + 1] - b;
         if (n < 3)
             return UMP_FAIL(err, UMP_ERR_INPUT, "%s/faces: face %ld has %ld points (at least 3 needed)",
                             d, (long)f, (long)n);
-        for (ump_idx i = m->face_off[f]; i < m->face_off[f + 1]; i++)
+        for (ump_idx i = b; i < b + n; i++) {
             if (m->face_pts[i] < 0 || m->face_pts[i] >= m->npoints)
                 return UMP_FAIL(err, UMP_ERR_INPUT,
-                                "%s/faces: face %ld uses point %ld, but points has %ld entries",
+                                "%s/faces: face %ld uses point %ld, but points has %ld entries "
+                                "(checkMesh: Faces with invalid vertex labels)",
                                 d, (long)f, (long)m->face_pts[i], (long)m->npoints);
+            /* faces are short (3-8 points, a few dozen for polyhedra): quadratic is fine
+             * up to 64 points; longer faces are checked against a sorted copy below */
+            for (ump_idx j = b; n <= 64 && j < i; j++)
+                if (m->face_pts[j] == m->face_pts[i])
+                    return UMP_FAIL(err, UMP_ERR_INPUT,
+                                    "%s/faces: face %ld uses point %ld twice (checkMesh: Faces with "
+                                    "invalid vertex labels)", d, (long)f, (long)m->face_pts[i]);
+        }
     }
+    return UMP_OK;
+}
+
+static int cmp_idx(const void *a, const void *b)
+{
+    ump_idx x = *(const ump_idx *)a, y = *(const ump_idx *)b;
+    return (x > y) - (x < y);
+}
+
+/* Sorted copy of the point labels of every face (same CSR offsets). */
+static ump_idx *sorted_faces(const pmesh *m)
+{
+    size_t n = (size_t)m->face_off[m->nfaces];
+    ump_idx *s = ump_alloc_array(n ? n : 1, sizeof *s);
+    if (!s)
+        return NULL;
+    if (n)
+        memcpy(s, m->face_pts, n * sizeof *s);
+    for (ump_idx f = 0; f < m->nfaces; f++) {
+        ump_idx b = m->face_off[f], k = m->face_off[f + 1] - b;
+        if (k <= 16) {
+            for (ump_idx i = b + 1; i < b + k; i++) {
+                ump_idx v = s[i], j = i;
+                for (; j > b && s[j - 1] > v; j--)
+                    s[j] = s[j - 1];
+                s[j] = v;
+            }
+        } else {
+            qsort(s + b, (size_t)k, sizeof *s, cmp_idx);
+        }
+    }
+    return s;
+}
+
+static int same_face(const pmesh *m, const ump_idx *s, ump_idx f, ump_idx g)
+{
+    ump_idx nf = m->face_off[f + 1] - m->face_off[f];
+    if (m->face_off[g + 1] - m->face_off[g] != nf)
+        return 0;
+    return memcmp(s + m->face_off[f], s + m->face_off[g], (size_t)nf * sizeof *s) == 0;
+}
+
+/* Long faces' repeated points, then duplicate faces (the same point set:
+ * OpenFOAM's checkFaceFaces), by a hash of the sorted labels. */
+static ump_status check_duplicate_faces(const pmesh *m, ump_err *err)
+{
+    const char *d = m->dir;
+    ump_idx *s = sorted_faces(m);
+    size_t cap = 16;
+    while (cap < 2 * (size_t)m->nfaces)
+        cap *= 2;
+    ump_idx *tab = s ? ump_alloc_array(cap, sizeof *tab) : NULL;
+    if (!tab) {
+        free(s);
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory checking the faces", d);
+    }
+    ump_status rc = UMP_OK;
+    for (ump_idx f = 0; f < m->nfaces && rc == UMP_OK; f++) {
+        ump_idx b = m->face_off[f], e = m->face_off[f + 1];
+        uint64_t h = 1469598103934665603ull;
+        for (ump_idx i = b; i < e; i++) {
+            if (i > b && s[i] == s[i - 1]) {
+                rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s/faces: face %ld uses point %ld twice (checkMesh: "
+                              "Faces with invalid vertex labels)", d, (long)f, (long)s[i]);
+                break;
+            }
+            h = (h ^ (uint64_t)(uint32_t)s[i]) * 1099511628211ull;
+        }
+        if (rc != UMP_OK)
+            break;
+        size_t k = (size_t)(h ^ (h >> 29)) & (cap - 1);
+        for (; tab[k]; k = (k + 1) & (cap - 1)) {
+            ump_idx g = tab[k] - 1;
+            if (!same_face(m, s, f, g))
+                continue;
+            int bf = f >= m->ninternal, bg = g >= m->ninternal;
+            rc = UMP_FAIL(err, UMP_ERR_INPUT,
+                          "%s/faces: faces %ld and %ld have the same %ld points: duplicate faces "
+                          "(owners %ld and %ld%s; checkMesh -allTopology: duplicate faces)",
+                          d, (long)g, (long)f, (long)(e - b), (long)m->owner[g], (long)m->owner[f],
+                          bf && bg && m->owner[f] != m->owner[g]
+                              ? ": two boundary faces in one place, a baffle, which umppmFoam does not support"
+                              : "");
+            break;
+        }
+        if (rc == UMP_OK)
+            tab[k] = f + 1;
+    }
+    free(tab);
+    free(s);
+    return rc;
+}
+
+/* Cell -> faces (CSR) into *off [ncells+1], *cf. */
+static ump_status cell_faces(const pmesh *m, ump_idx **off, ump_idx **cf, ump_err *err)
+{
+    *off = ump_alloc_array((size_t)m->ncells + 1, sizeof **off);
+    *cf = ump_alloc_array((size_t)m->nfaces + (size_t)m->ninternal + 1, sizeof **cf);
+    ump_idx *fill = ump_alloc_array((size_t)m->ncells, sizeof *fill);
+    if (!*off || !*cf || !fill) {
+        free(fill);
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", m->dir);
+    }
+    ump_idx *o = *off;
+    for (ump_idx f = 0; f < m->nfaces; f++) {
+        o[m->owner[f] + 1]++;
+        if (f < m->ninternal)
+            o[m->neighbour[f] + 1]++;
+    }
+    for (ump_idx c = 0; c < m->ncells; c++)
+        o[c + 1] += o[c];
+    for (ump_idx f = 0; f < m->nfaces; f++) {
+        (*cf)[o[m->owner[f]] + fill[m->owner[f]]++] = f;
+        if (f < m->ninternal)
+            (*cf)[o[m->neighbour[f]] + fill[m->neighbour[f]]++] = f;
+    }
+    free(fill);
+    return UMP_OK;
+}
+
+/* Every cell closed: each of its edges used by exactly two of its faces
+ * (checkMesh -allTopology: checkCellsZipUp), and the sum of its outward face
+ * area vectors zero relative to their total (checkClosedCells, threshold
+ * 1e-6: a face the wrong way round passes the first test, not this one). */
+static ump_status check_closed_cells(const pmesh *m, const ump_idx *off, const ump_idx *cf, ump_err *err)
+{
+    const char *d = m->dir;
+    size_t cap = 64;
+    ump_idx (*edge)[3] = ump_alloc_array(cap, sizeof *edge);
+    if (!edge)
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", d);
+    ump_status rc = UMP_OK;
+    for (ump_idx c = 0; c < m->ncells && rc == UMP_OK; c++) {
+        if (off[c + 1] - off[c] < 4) {
+            rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s/owner: cell %ld has only %ld faces (checkMesh: Cells "
+                          "with fewer than 4 faces)", d, (long)c, (long)(off[c + 1] - off[c]));
+            break;
+        }
+        size_t ne = 0;
+        double S[3] = {0, 0, 0}, mag = 0;
+        for (ump_idx k = off[c]; k < off[c + 1] && rc == UMP_OK; k++) {
+            ump_idx f = cf[k], b = m->face_off[f], e = m->face_off[f + 1];
+            double A[3], sg = m->owner[f] == c ? 1.0 : -1.0;
+            face_area(m, f, A);
+            for (int q = 0; q < 3; q++)
+                S[q] += sg * A[q];
+            mag += sqrt(A[0] * A[0] + A[1] * A[1] + A[2] * A[2]);
+            for (ump_idx i = b; i < e; i++) {
+                ump_idx p = m->face_pts[i], q = m->face_pts[i + 1 < e ? i + 1 : b];
+                ump_idx lo = UMP_MIN(p, q), hi = UMP_MAX(p, q);
+                size_t j = 0;
+                while (j < ne && !(edge[j][0] == lo && edge[j][1] == hi))
+                    j++;
+                if (j == ne) {
+                    if (ne == cap) {
+                        ump_idx (*ng)[3] = ump_realloc_array(edge, cap * 2, sizeof *edge);
+                        if (!ng) {
+                            rc = UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", d);
+                            break;
+                        }
+                        edge = ng;
+                        cap *= 2;
+                    }
+                    edge[ne][0] = lo;
+                    edge[ne][1] = hi;
+                    edge[ne][2] = 0;
+                    ne++;
+                }
+                edge[j][2]++;
+            }
+        }
+        for (size_t j = 0; j < ne && rc == UMP_OK; j++)
+            if (edge[j][2] != 2)
+                rc = UMP_FAIL(err, UMP_ERR_INPUT,
+                              "%s/owner: cell %ld is open: its edge (%ld %ld) is used by %ld of its faces, "
+                              "not 2 (checkMesh -allTopology: Open cells found, not zipped up)",
+                              d, (long)c, (long)edge[j][0], (long)edge[j][1], (long)edge[j][2]);
+        if (rc != UMP_OK)
+            break;
+        double open = fmax(fabs(S[0]), fmax(fabs(S[1]), fabs(S[2]))) / (mag > 0 ? mag : 1.0);
+        if (!(open <= 1e-6))
+            rc = UMP_FAIL(err, UMP_ERR_INPUT,
+                          "%s/faces: cell %ld is open: the sum of its outward face area vectors is %.3g "
+                          "of their total area (checkMesh: Open cells found, openness threshold 1e-6; a "
+                          "face the wrong way round, or owner/neighbour swapped?)", d, (long)c, open);
+    }
+    free(edge);
+    return rc;
+}
+
+ump_status pmesh_check(const pmesh *m, ump_err *err)
+{
+    const char *d = m->dir;
+    UMP_CALL(check_face_vertices(m, err));
     if (m->ncells <= 0)
         return UMP_FAIL(err, UMP_ERR_INPUT, "%s/owner: the mesh has no cells", d);
     for (ump_idx f = 0; f < m->nfaces; f++)
-        if (m->owner[f] < 0)
-            return UMP_FAIL(err, UMP_ERR_INPUT, "%s/owner: face %ld has owner %ld", d, (long)f,
-                            (long)m->owner[f]);
+        if (m->owner[f] < 0 || m->owner[f] >= m->ncells)
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s/owner: face %ld has owner %ld (the mesh has %ld cells)",
+                            d, (long)f, (long)m->owner[f], (long)m->ncells);
     for (ump_idx f = 0; f < m->ninternal; f++) {
-        if (m->neighbour[f] < 0)
-            return UMP_FAIL(err, UMP_ERR_INPUT, "%s/neighbour: face %ld has neighbour %ld", d,
-                            (long)f, (long)m->neighbour[f]);
+        if (m->neighbour[f] < 0 || m->neighbour[f] >= m->ncells)
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s/neighbour: face %ld has neighbour %ld (the mesh has "
+                            "%ld cells)", d, (long)f, (long)m->neighbour[f], (long)m->ncells);
         if (m->neighbour[f] <= m->owner[f])
             return UMP_FAIL(err, UMP_ERR_INPUT,
                             "%s/neighbour: internal face %ld has neighbour %ld not greater than its owner %ld",
                             d, (long)f, (long)m->neighbour[f], (long)m->owner[f]);
     }
-    ump_idx next = m->ninternal;
+    int64_t next = m->ninternal;
     for (int i = 0; i < m->npatches; i++) {
         const pmesh_patch *p = &m->patch[i];
         if (p->start != next)
             return UMP_FAIL(err, UMP_ERR_INPUT,
-                            "%s/boundary: patch '%s' starts at face %ld, expected %ld (patches must follow "
-                            "the internal faces and each other)", d, p->name, (long)p->start, (long)next);
+                            "%s/boundary: patch '%s' starts at face %ld, expected %lld (patches must follow "
+                            "the internal faces and each other)", d, p->name, (long)p->start, (long long)next);
+        if ((int64_t)p->n > (int64_t)m->nfaces - next)
+            return UMP_FAIL(err, UMP_ERR_INPUT,
+                            "%s/boundary: patch '%s' has startFace %ld and nFaces %ld, beyond the %ld faces "
+                            "of the mesh", d, p->name, (long)p->start, (long)p->n, (long)m->nfaces);
         next += p->n;
     }
     if (next != m->nfaces)
         return UMP_FAIL(err, UMP_ERR_INPUT,
-                        "%s/boundary: patches end at face %ld but the mesh has %ld faces", d, (long)next,
+                        "%s/boundary: patches end at face %lld but the mesh has %ld faces", d, (long long)next,
                         (long)m->nfaces);
-    /* every cell must have at least 4 faces to be closed in 3-D */
-    ump_idx *nfc = ump_alloc_array((size_t)m->ncells, sizeof *nfc);
-    if (!nfc)
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", d);
-    for (ump_idx f = 0; f < m->nfaces; f++) {
-        nfc[m->owner[f]]++;
-        if (f < m->ninternal)
-            nfc[m->neighbour[f]]++;
-    }
-    for (ump_idx c = 0; c < m->ncells; c++)
-        if (nfc[c] < 4) {
-            ump_idx k = nfc[c];
-            free(nfc);
-            return UMP_FAIL(err, UMP_ERR_INPUT, "%s/owner: cell %ld has only %ld faces", d, (long)c, (long)k);
-        }
-    free(nfc);
-    return UMP_OK;
+    UMP_CALL(check_duplicate_faces(m, err));
+    ump_idx *off = NULL, *cf = NULL;
+    ump_status rc = cell_faces(m, &off, &cf, err);
+    if (rc == UMP_OK)
+        rc = check_closed_cells(m, off, cf, err);
+    free(off);
+    free(cf);
+    return rc;
 }
 
 ump_status pmesh_read(const char *dir, pmesh **out, ump_err *err)
@@ -397,11 +618,28 @@ ump_status pmesh_read(const char *dir, pmesh **out, ump_err *err)
         goto fail;
     }
     m->ninternal = (ump_idx)nnei;
-    ump_idx maxc = -1;
+    ump_idx maxc = -1, fmaxc = -1;
     for (ump_idx f = 0; f < m->nfaces; f++)
-        maxc = UMP_MAX(maxc, m->owner[f]);
+        if (m->owner[f] > maxc) {
+            maxc = m->owner[f];
+            fmaxc = f;
+        }
+    int from_nbr = 0;
     for (ump_idx f = 0; f < m->ninternal; f++)
-        maxc = UMP_MAX(maxc, m->neighbour[f]);
+        if (m->neighbour[f] > maxc) {
+            maxc = m->neighbour[f];
+            fmaxc = f;
+            from_nbr = 1;
+        }
+    /* a closed cell has at least 4 faces and a face bounds at most 2 cells:
+     * more than nFaces/2 cells means a label out of range (refused before
+     * anything is allocated per cell) */
+    if ((int64_t)maxc + 1 > (int64_t)m->nfaces / 2) {
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s/%s: face %ld has %s %ld: out of range (%ld faces close at "
+                      "most %ld cells)", dir, from_nbr ? "neighbour" : "owner", (long)fmaxc,
+                      from_nbr ? "neighbour" : "owner", (long)maxc, (long)m->nfaces, (long)(m->nfaces / 2));
+        goto fail;
+    }
     m->ncells = maxc + 1;
     if (note_cells >= 0 && m->ncells > note_cells) {
         /* the header says how many cells there are: name the first offender */

@@ -3,9 +3,11 @@
  *
  * Reads points, faces (faceList or faceCompactList), owner, neighbour and
  * boundary, ascii or binary, plain or gzipped, into the 3-D polyMesh it
- * describes. No geometry is computed here; pmesh_check() verifies the
+ * describes. pmesh_check() verifies the
  * topology (counts, index ranges, owner < neighbour on internal faces,
- * patch ranges contiguous and covering the boundary, every cell closed).
+ * patch ranges contiguous and covering the boundary, duplicate faces,
+ * repeated face points, every cell closed: edges used twice, area vectors
+ * summing to zero: the only geometry computed here).
  */
 #ifndef UMPPM_POLYMESH_H
 #define UMPPM_POLYMESH_H

@@ -2,6 +2,7 @@
  * test_mesh2d.c -- geometry and stencils of the 2-D pressure mesh on
  * hand-checkable meshes (built in memory with pmesh_extrude).
  */
+#include "testmesh.h"
 #include "testutil.h"
 #include "umppm/mesh2d.h"
 #include "umppm/polymesh.h"
@@ -288,6 +289,59 @@ static void test_refusals(void **state)
     pmesh_free(&pm);
 }
 
+/* pmesh_check's topology checks (issue 15), on a 2x2 square */
+static void test_topology(void **state)
+{
+    (void)state;
+    ump_err err;
+    pmesh *pm = quad_square(2);
+    assert_int_equal(pmesh_check(pm, &err), UMP_OK);
+    ump_idx *fp = pm->face_pts + pm->face_off[0], save[4];
+    memcpy(save, fp, sizeof save);
+    /* a flipped face: every edge still used twice, the area vectors do not cancel */
+    ump_idx t = fp[1];
+    fp[1] = fp[3];
+    fp[3] = t;
+    assert_int_equal(pmesh_check(pm, &err), UMP_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "is open: the sum of its outward face area vectors"));
+    memcpy(fp, save, sizeof save);
+    /* a point used twice by a face */
+    fp[2] = fp[1];
+    assert_int_equal(pmesh_check(pm, &err), UMP_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "twice"));
+    memcpy(fp, save, sizeof save);
+    /* face 1 a copy of face 0 */
+    ump_idx *f1 = pm->face_pts + pm->face_off[1], save1[4];
+    assert_int_equal(pm->face_off[2] - pm->face_off[1], 4);
+    memcpy(save1, f1, sizeof save1);
+    memcpy(f1, save, sizeof save);
+    assert_int_equal(pmesh_check(pm, &err), UMP_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "faces 0 and 1 have the same 4 points"));
+    memcpy(f1, save1, sizeof save1);
+    /* a boundary face given to another cell: edges used once */
+    ump_idx bf = pm->patch[0].start, o = pm->owner[bf];
+    pm->owner[bf] = (o + 1) % pm->ncells;
+    assert_int_equal(pmesh_check(pm, &err), UMP_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "is open: its edge"));
+    pm->owner[bf] = o;
+    /* nFaces near the label limit: no overflow, a clear refusal */
+    ump_idx n0 = pm->patch[0].n;
+    pm->patch[0].n = UMP_IDX_MAX;
+    assert_int_equal(pmesh_check(pm, &err), UMP_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "beyond the"));
+    pm->patch[0].n = n0;
+    assert_int_equal(pmesh_check(pm, &err), UMP_OK);
+    pmesh_free(&pm);
+    /* one cell between a cyclic pair: the cell is its own periodic neighbour */
+    mesh2d *m = NULL;
+    pm = tm_pmesh(TM_QUAD, 1, 0.0, 1);
+    assert_int_equal(pmesh_check(pm, &err), UMP_OK);
+    assert_int_equal(mesh_build(pm, &m, &err), UMP_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "one cell wide between the pair"));
+    assert_null(m);
+    pmesh_free(&pm);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -297,6 +351,7 @@ int main(void)
         cmocka_unit_test(test_orientation),
         cmocka_unit_test(test_cyclic),
         cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_topology),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -520,16 +520,10 @@ static void test_locate_periodic(void **state)
     TU_CLOSE(y, 0.1 * h, 1e-14);
     tmesh_free(&t);
 
-    /* one cell across the period: owner == neighbour on both cyclic faces */
-    t = build_grid(1, 0.0, kind_quad, 1);
-    m = t.m;
-    x = 1.25;
-    y = -0.5;
-    assert_int_equal(part_locate(m, 0, &x, &y, &cell, &face), PART_INSIDE);
-    assert_int_equal(cell, 0);
-    TU_CLOSE(x, 0.25, 1e-15);
-    TU_CLOSE(y, 0.5, 1e-15);
-    tmesh_free(&t);
+    /* one cell across the period (owner == neighbour on both cyclic faces)
+     * is refused by mesh_build since issue 15: such a cell's least-squares
+     * stencil is degenerate, so no run could use it (tests/unit/test_mesh2d.c,
+     * test_badmesh_topology.sh) */
 
     /* random small moves on periodic triangle and hybrid meshes */
     int (*kinds[])(int, int, int) = {kind_tri4, kind_hybrid};
