@@ -461,7 +461,7 @@ static const case_option umppm_options[] = {
      UM_FIELD(ppe_solver)},
     {"predictorSolver.preconditioner", CASE_OPT_CHOICE, "Jacobi", 0, pc_words, NULL, UM_NORANGE,
      "preconditioner of the BiCGSTAB predictor", UM_FIELD(pred_pc)},
-    {"predictorSolver.tolerance", CASE_OPT_SCALAR, "1e-10", 1e-10, NULL, NULL, UM_GT(0),
+    {"predictorSolver.tolerance", CASE_OPT_SCALAR, "1e-12", 1e-12, NULL, NULL, UM_GT(0),
      "relative tolerance of the BiCGSTAB predictor", UM_FIELD(pred_tol)},
     {"predictorSolver.maxIter", CASE_OPT_LABEL, "500", 500, NULL, NULL, UM_GE(1),
      "iteration limit of the BiCGSTAB predictor", UM_FIELD(pred_maxit)},

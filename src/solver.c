@@ -176,7 +176,7 @@ void sol_default_settings(sol_settings *s)
     s->lap.re_factor = 0; /* the model's default */
     s->ppe_solver = LSOLVE_AUTO;
     s->pred_pc = LSOLVE_PC_JACOBI;
-    s->pred_tol = 1e-10;
+    s->pred_tol = 1e-12;
     s->pred_maxit = 500;
     s->p_ref_cell = 0;
     s->p_ref_value = 0;

@@ -471,7 +471,7 @@ static void test_umppm_defaults(void **state)
     assert_int_equal(def.write_quality, 0);
     assert_string_equal(def.ppe_solver, "auto");
     assert_string_equal(def.pred_pc, "Jacobi");
-    TU_CLOSE(def.pred_tol, 1e-10, 0);
+    TU_CLOSE(def.pred_tol, 1e-12, 0);
     assert_int_equal(def.pred_maxit, 500);
     assert_string_equal(def.cloud_name, "umppmCloud");
     assert_int_equal(def.sort_interval, 1);
