@@ -625,67 +625,32 @@ static void put_field(sink *s, const pmesh *pm, const fld_field *f, const char *
     put_footer(s);
 }
 
-ump_status fio_write_field(const char *dir, const char *location, const pmesh *pm,
-                           const fld_field *f, const fio_format *fmt, ump_err *err)
+/* <dir>/<name> (.gz when compressing) in OpenFOAM's way, its contents from
+ * put(s, ctx): written, closed (removed again if that fails), then the other
+ * variant removed as OpenFOAM does, so readers cannot pick up a stale file
+ * (IFstream tries the plain name first). check, if not NULL, runs first
+ * with the path (for its messages). */
+typedef struct field_job {
+    const pmesh *pm;
+    const fld_field *f;     /* fio_write_field */
+    const double *phi;      /* fio_write_phi */
+    const char *location;
+    int binary, prec;
+} field_job;
+
+static ump_status write_file(const char *dir, const char *name, const fio_format *fmt,
+                             void (*put)(sink *, const field_job *), const field_job *job,
+                             ump_status (*check)(const char *, const field_job *, ump_err *), ump_err *err)
 {
-    static const fio_format def = {0, 6, 0};
-    UMP_CHECK(dir && *dir && f && pm, err, UMP_ERR_INPUT, "fio_write_field: missing argument");
-    UMP_CHECK(f->name && *f->name && !strchr(f->name, '/'), err, UMP_ERR_INPUT,
-              "%s: invalid field name '%s'", dir, f->name ? f->name : "");
-    if (!fmt)
-        fmt = &def;
-    int prec = fmt->precision > 0 ? fmt->precision : 6;
     /* v1912 disables compression for binary output */
     int gz = fmt->compress && !fmt->binary;
-
     char path[4200], other[4200];
-    int n1 = snprintf(path, sizeof path, "%s/%s%s", dir, f->name, gz ? ".gz" : "");
-    int n2 = snprintf(other, sizeof other, "%s/%s%s", dir, f->name, gz ? "" : ".gz");
+    int n1 = snprintf(path, sizeof path, "%s/%s%s", dir, name, gz ? ".gz" : "");
+    int n2 = snprintf(other, sizeof other, "%s/%s%s", dir, name, gz ? "" : ".gz");
     UMP_CHECK(n1 > 0 && n2 > 0 && (size_t)n1 < sizeof path && (size_t)n2 < sizeof other,
               err, UMP_ERR_INPUT, "%s: path too long", dir);
-    UMP_CALL(check_field(path, pm, f, err));
-
-    sink *s = malloc(sizeof *s);
-    if (!s)
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
-    if (sink_open(s, path, gz) != 0) {
-        int e = errno;
-        free(s);
-        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot open for writing: %s", path,
-                        strerror(e));
-    }
-    put_field(s, pm, f, location, fmt->binary, prec);
-    errno = 0;
-    if (sink_close(s) != 0) {
-        int e = errno;
-        free(s);
-        remove(path);
-        return UMP_FAIL(err, UMP_ERR_IO, "%s: write failed: %s", path,
-                        e ? strerror(e) : "short write");
-    }
-    free(s);
-    /* OpenFOAM deletes the other variant so readers cannot pick up a stale
-     * file (IFstream tries the plain name first) */
-    if (remove(other) != 0 && errno != ENOENT)
-        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot remove stale file: %s", other,
-                        strerror(errno));
-    return UMP_OK;
-}
-
-ump_status fio_write_phi(const char *dir, const char *location, const pmesh *pm, const double *phi,
-                         const fio_format *fmt, ump_err *err)
-{
-    static const fio_format def = {0, 6, 0};
-    UMP_CHECK(dir && *dir && pm && phi, err, UMP_ERR_INPUT, "fio_write_phi: missing argument");
-    if (!fmt)
-        fmt = &def;
-    int prec = fmt->precision > 0 ? fmt->precision : 6;
-    int gz = fmt->compress && !fmt->binary;
-    char path[4200], other[4200];
-    int n1 = snprintf(path, sizeof path, "%s/phi%s", dir, gz ? ".gz" : "");
-    int n2 = snprintf(other, sizeof other, "%s/phi%s", dir, gz ? "" : ".gz");
-    UMP_CHECK(n1 > 0 && n2 > 0 && (size_t)n1 < sizeof path && (size_t)n2 < sizeof other, err,
-              UMP_ERR_INPUT, "%s: path too long", dir);
+    if (check)
+        UMP_CALL(check(path, job, err));
     sink *s = malloc(sizeof *s);
     if (!s)
         return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
@@ -694,28 +659,7 @@ ump_status fio_write_phi(const char *dir, const char *location, const pmesh *pm,
         free(s);
         return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot open for writing: %s", path, strerror(e));
     }
-    put_header(s, "surfaceScalarField", location, "phi", fmt->binary);
-    put_key(s, 0, "dimensions");
-    sink_puts(s, "[0 3 -1 0 0 0 0];\n");
-    put_key(s, 0, "oriented");
-    sink_puts(s, "oriented;\n\n\n");
-    put_key(s, 0, "internalField");
-    put_field_value(s, phi, pm->ninternal, 1, fmt->binary, prec);
-    sink_puts(s, "\nboundaryField\n{\n");
-    for (int i = 0; i < pm->npatches; i++) {
-        const pmesh_patch *pp = &pm->patch[i];
-        sink_printf(s, "    %s\n    {\n", pp->name);
-        put_key(s, 8, "type");
-        sink_puts(s, pp->kind == PMESH_EMPTY ? "empty;\n" : pp->kind == PMESH_CYCLIC ? "cyclic;\n" : "calculated;\n");
-        put_key(s, 8, "value");
-        if (pp->kind == PMESH_EMPTY)
-            put_field_value(s, phi, 0, 1, fmt->binary, prec);
-        else
-            put_field_value(s, phi + pp->start, pp->n, 1, fmt->binary, prec);
-        sink_puts(s, "    }\n");
-    }
-    sink_puts(s, "}\n");
-    put_footer(s);
+    put(s, job);
     errno = 0;
     if (sink_close(s) != 0) {
         int e = errno;
@@ -727,6 +671,66 @@ ump_status fio_write_phi(const char *dir, const char *location, const pmesh *pm,
     if (remove(other) != 0 && errno != ENOENT)
         return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot remove stale file: %s", other, strerror(errno));
     return UMP_OK;
+}
+
+static ump_status check_job(const char *path, const field_job *j, ump_err *err)
+{
+    return check_field(path, j->pm, j->f, err);
+}
+
+static void put_field_job(sink *s, const field_job *j)
+{
+    put_field(s, j->pm, j->f, j->location, j->binary, j->prec);
+}
+
+ump_status fio_write_field(const char *dir, const char *location, const pmesh *pm,
+                           const fld_field *f, const fio_format *fmt, ump_err *err)
+{
+    static const fio_format def = {0, 6, 0};
+    UMP_CHECK(dir && *dir && f && pm, err, UMP_ERR_INPUT, "fio_write_field: missing argument");
+    UMP_CHECK(f->name && *f->name && !strchr(f->name, '/'), err, UMP_ERR_INPUT,
+              "%s: invalid field name '%s'", dir, f->name ? f->name : "");
+    if (!fmt)
+        fmt = &def;
+    field_job j = {pm, f, NULL, location, fmt->binary, fmt->precision > 0 ? fmt->precision : 6};
+    return write_file(dir, f->name, fmt, put_field_job, &j, check_job, err);
+}
+
+static void put_phi(sink *s, const field_job *j)
+{
+    const pmesh *pm = j->pm;
+    const double *phi = j->phi;
+    put_header(s, "surfaceScalarField", j->location, "phi", j->binary);
+    put_key(s, 0, "dimensions");
+    sink_puts(s, "[0 3 -1 0 0 0 0];\n");
+    put_key(s, 0, "oriented");
+    sink_puts(s, "oriented;\n\n\n");
+    put_key(s, 0, "internalField");
+    put_field_value(s, phi, pm->ninternal, 1, j->binary, j->prec);
+    sink_puts(s, "\nboundaryField\n{\n");
+    for (int i = 0; i < pm->npatches; i++) {
+        const pmesh_patch *pp = &pm->patch[i];
+        int empty = pp->kind == PMESH_EMPTY;
+        sink_printf(s, "    %s\n    {\n", pp->name);
+        put_key(s, 8, "type");
+        sink_puts(s, empty ? "empty;\n" : pp->kind == PMESH_CYCLIC ? "cyclic;\n" : "calculated;\n");
+        put_key(s, 8, "value");
+        put_field_value(s, phi + (empty ? 0 : pp->start), empty ? 0 : pp->n, 1, j->binary, j->prec);
+        sink_puts(s, "    }\n");
+    }
+    sink_puts(s, "}\n");
+    put_footer(s);
+}
+
+ump_status fio_write_phi(const char *dir, const char *location, const pmesh *pm, const double *phi,
+                         const fio_format *fmt, ump_err *err)
+{
+    static const fio_format def = {0, 6, 0};
+    UMP_CHECK(dir && *dir && pm && phi, err, UMP_ERR_INPUT, "fio_write_phi: missing argument");
+    if (!fmt)
+        fmt = &def;
+    field_job j = {pm, NULL, phi, location, fmt->binary, fmt->precision > 0 ? fmt->precision : 6};
+    return write_file(dir, "phi", fmt, put_phi, &j, NULL, err);
 }
 
 ump_status fio_write_uniform_time(const char *dir, const char *location,
