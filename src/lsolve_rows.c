@@ -45,6 +45,7 @@ struct lsolve_rows {
     double *dinv, *lu;
     ump_idx *dptr, *iw;
     double *part;      /* block partial sums [LSOLVE_MAX_RHS][nblocks] */
+    double *pair;      /* [2 ncap]: two right-hand sides interleaved for spmv */
     lsolve_pc pc;
     ump_idx pc_n;      /* order the preconditioner was built for (-1: none) */
 };
@@ -64,6 +65,7 @@ void lsolve_rows_free(lsolve_rows **pk)
     free(k->dptr);
     free(k->iw);
     free(k->part);
+    free(k->pair);
     free(k);
     *pk = NULL;
 }
@@ -96,6 +98,9 @@ static ump_status reserve_rows(lsolve_rows *k, ump_idx n, int nrhs, ump_err *err
             k->vec[r][q] = v;
         }
     if (grow || !k->dinv) {
+        double *z = ump_realloc_array(k->pair, 2 * nc, sizeof *z);
+        UMP_CHECK(z, err, UMP_ERR_NOMEM, "BiCGSTAB: out of memory for %zu unknowns", nc);
+        k->pair = z;
         double *d = ump_realloc_array(k->dinv, nc, sizeof *d);
         UMP_CHECK(d, err, UMP_ERR_NOMEM, "BiCGSTAB: out of memory for %zu unknowns", nc);
         k->dinv = d;
@@ -242,7 +247,49 @@ static inline __attribute__((always_inline)) void row_sum4(const lsolve_csr *A, 
             s[r][q] += v[p] * x[r][ci[p]];
 }
 
-static void spmv(const lsolve_csr *A, int m, double *const *x, double *const *y)
+/* Two systems: x[0] and x[1] interleaved in z, so one 16-byte load fetches
+ * both values of a column and one vector multiply-add serves both sums
+ * (half the loads and arithmetic instructions of two scalar sums). Lane r
+ * of sum q is exactly s[r][q] of row_sum4: the same bits. */
+typedef double lsolve_v2d __attribute__((vector_size(16)));
+
+static void spmv2(const lsolve_csr *A, double *restrict zbuf, double *const *x, double *const *y)
+{
+    const ump_idx n = A->n;
+    lsolve_v2d *restrict z = (lsolve_v2d *)zbuf;
+    const double *restrict x0 = x[0], *restrict x1 = x[1];
+    double *restrict y0 = y[0], *restrict y1 = y[1];
+    const ump_idx *restrict rp = A->rp, *restrict ci = A->ci;
+    const double *restrict v = A->v;
+#pragma omp parallel
+    {
+#pragma omp for schedule(static)
+        for (ump_idx i = 0; i < n; i++)
+            z[i] = (lsolve_v2d){x0[i], x1[i]};
+#pragma omp for schedule(static)
+        for (ump_idx i = 0; i < n; i++) {
+            lsolve_v2d s0 = {0, 0}, s1 = {0, 0}, s2 = {0, 0}, s3 = {0, 0};
+            ump_idx p = rp[i], e = rp[i + 1];
+            for (; p + 4 <= e; p += 4) {
+                s0 += v[p] * z[ci[p]];
+                s1 += v[p + 1] * z[ci[p + 1]];
+                s2 += v[p + 2] * z[ci[p + 2]];
+                s3 += v[p + 3] * z[ci[p + 3]];
+            }
+            if (p < e)
+                s0 += v[p] * z[ci[p]];
+            if (p + 1 < e)
+                s1 += v[p + 1] * z[ci[p + 1]];
+            if (p + 2 < e)
+                s2 += v[p + 2] * z[ci[p + 2]];
+            lsolve_v2d t = (s0 + s1) + (s2 + s3);
+            y0[i] = t[0];
+            y1[i] = t[1];
+        }
+    }
+}
+
+static void spmv(const lsolve_rows *k, const lsolve_csr *A, int m, double *const *x, double *const *y)
 {
     const ump_idx n = A->n;
     if (m == 1) {
@@ -256,14 +303,7 @@ static void spmv(const lsolve_csr *A, int m, double *const *x, double *const *y)
         return;
     }
     if (m == 2) {
-        const double *xr[2] = {x[0], x[1]};
-#pragma omp parallel for schedule(static)
-        for (ump_idx i = 0; i < n; i++) {
-            double s[2][4] = {{0, 0, 0, 0}, {0, 0, 0, 0}};
-            row_sum4(A, i, 2, xr, s);
-            y[0][i] = (s[0][0] + s[0][1]) + (s[0][2] + s[0][3]);
-            y[1][i] = (s[1][0] + s[1][1]) + (s[1][2] + s[1][3]);
-        }
+        spmv2(A, k->pair, x, y);
         return;
     }
 #pragma omp parallel for schedule(static)
@@ -439,7 +479,7 @@ typedef struct sysstate {
 static double true_residual(lsolve_rows *k, const lsolve_csr *A, const double *b, double *x, double *r)
 {
     double *xs[1] = {x}, *rs[1] = {r}, d;
-    spmv(A, 1, xs, rs);
+    spmv(k, A, 1, xs, rs);
     ump_idx n = A->n;
 #pragma omp parallel for schedule(static)
     for (ump_idx i = 0; i < n; i++)
@@ -510,7 +550,7 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
         R[r] = k->vec[r][V_R];
     }
     dots(k, n, nrhs, B, B, d);
-    spmv(A, nrhs, X, R);
+    spmv(k, A, nrhs, X, R);
     for (int r = 0; r < nrhs; r++) {
         s[r].bnorm = sqrt(d[r]);
         UMP_CHECK(isfinite(s[r].bnorm), err, UMP_ERR_INPUT, "BiCGSTAB: right-hand side has NaN or inf");
@@ -585,7 +625,7 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
             }
         }
         apply_pc(k, A, m, P, PH); /* ph <- M^-1 p */
-        spmv(A, m, PH, V);        /* v <- A ph */
+        spmv(k, A, m, PH, V);        /* v <- A ph */
         dots(k, n, m, RH, V, d);  /* sigma = (rh, v) */
         ml = 0;
         for (int j = 0; j < m; j++) {
@@ -619,7 +659,7 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
         if (!m)
             continue;
         apply_pc(k, A, m, S, SH); /* sh <- M^-1 s */
-        spmv(A, m, SH, T);        /* t <- A sh */
+        spmv(k, A, m, SH, T);        /* t <- A sh */
         for (int j = 0; j < m; j++) {
             sysstate *q = &s[a[j]];
             double tt, ts;
