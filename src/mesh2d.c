@@ -615,29 +615,50 @@ done:
     return rc;
 }
 
-/* Lattice of periodic translations (one vector per cyclic pair). */
+/* Lattice of periodic translations (one vector per cyclic pair), with its
+ * shifts s = sum_i k_i v_i, k_i in {-1, 0, 1}, tabulated by lattice_shifts. */
 typedef struct lattice {
     int n;
     double v[3][2];
+    int ns;            /* 3^n shifts; shift 0 is k = (-1, -1, ...) */
+    double s[27][2];
+    double rmin2;      /* (half the shortest non-zero shift)^2 */
 } lattice;
 
-static void closest_image(const lattice *L, double dx, double dy, double *sx, double *sy)
+static void lattice_shifts(lattice *L)
 {
-    /* shift s minimising |d + s| with s = sum_i k_i v_i, k_i in {-1,0,1} */
-    double best = dx * dx + dy * dy;
-    *sx = *sy = 0;
-    int ncomb = 1;
+    L->ns = 1;
     for (int i = 0; i < L->n; i++)
-        ncomb *= 3;
-    /* c = 0 is k = (-1, -1, ...), not the zero shift (which cannot pass the
-     * strict test below): start there */
-    for (int c = 0; c < ncomb; c++) {
+        L->ns *= 3;
+    double smin2 = INFINITY;
+    for (int c = 0; c < L->ns; c++) {
         double tx = 0, ty = 0;
         for (int i = 0, r = c; i < L->n; i++, r /= 3) {
             int k = r % 3 - 1;
             tx += k * L->v[i][0];
             ty += k * L->v[i][1];
         }
+        L->s[c][0] = tx;
+        L->s[c][1] = ty;
+        double s2 = tx * tx + ty * ty;
+        if (s2 > 0 && s2 < smin2)
+            smin2 = s2;
+    }
+    L->rmin2 = 0.25 * smin2 * (1 - 1e-9);
+}
+
+static void closest_image(const lattice *L, double dx, double dy, double *sx, double *sy)
+{
+    /* shift s minimising |d + s|; with |d| below half the shortest shift
+     * s != 0, |d + s| >= |s| - |d| > |d|: no shift (most pairs) */
+    double best = dx * dx + dy * dy;
+    *sx = *sy = 0;
+    if (best < L->rmin2)
+        return;
+    /* c = 0 is k = (-1, -1, ...), not the zero shift (which cannot pass the
+     * strict test below): start there */
+    for (int c = 0; c < L->ns; c++) {
+        double tx = L->s[c][0], ty = L->s[c][1];
         double d2 = (dx + tx) * (dx + tx) + (dy + ty) * (dy + ty);
         if (d2 < best - 1e-12 * best) {
             best = d2;
@@ -754,7 +775,7 @@ static ump_status build_stencils(mesh2d *m, const char *dir, ump_err *err)
         goto nomem;
     nbuf = (size_t)m->n2_off[nc];
     if (m->has_cyclic) {
-        lattice L = {0, {{0, 0}}};
+        lattice L = {.n = 0};
         for (ump_idx f = m->ninternal - 1; f >= 0 && m->face_pm2[f] >= 0; f--) {
             int dup = 0;
             for (int i = 0; i < L.n; i++)
@@ -767,6 +788,7 @@ static ump_status build_stencils(mesh2d *m, const char *dir, ump_err *err)
                 L.n++;
             }
         }
+        lattice_shifts(&L);
         ALLOC(m->n1_sx, m->n1_off[nc]);
         ALLOC(m->n1_sy, m->n1_off[nc]);
         ALLOC(m->n2_sx, nbuf);
