@@ -412,12 +412,15 @@ static int offsets(sol_work *w, size_t n, double x, double y, ump_idx skip_bface
  * returns the count. */
 static int offsets_but(sol_work *w, size_t n, ump_idx self, double x, double y)
 {
+    const double *restrict px = w->px, *restrict py = w->py;
+    const ump_idx *restrict ref = w->ref;
+    double *restrict h = w->h, *restrict k = w->k;
     int m = 0;
-    for (size_t j = 0; j < n; j++)
-        if (w->ref[j] != self) {
-            w->h[m] = w->px[j] - x;
-            w->k[m++] = w->py[j] - y;
-        }
+    for (size_t j = 0; j < n; j++) {
+        h[m] = px[j] - x;
+        k[m] = py[j] - y;
+        m += ref[j] != self; /* branch-free: self is overwritten */
+    }
     return m;
 }
 
@@ -968,18 +971,20 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
 #pragma omp parallel num_threads(S->nthreads)
     {
         sol_work *w = &S->work[thread_id()];
+        ump_idx gathered = -1; /* the cell whose stencil w holds (particles are sorted by cell) */
+        size_t cnt = 0;
 #pragma omp for schedule(dynamic, 256)
         for (size_t i = 0; i < n; i++) {
             if (w->rc != UMP_OK)
                 continue;
             ump_idx c = P->cell[i];
-            size_t cnt;
             ump_err e;
-            ump_status rc = gather_cell(su, st, w, c, &cnt, &e);
+            ump_status rc = c == gathered ? UMP_OK : gather_cell(su, st, w, c, &cnt, &e);
             if (rc != UMP_OK) {
                 work_fail(w, rc, &e);
                 continue;
             }
+            gathered = c;
             int nn = offsets_but(w, cnt, (ump_idx)i, P->x[i], P->y[i]);
             double l0 = sqrt(m->area[c]);
             if (lap_coeffs(&set->lap, w->h, w->k, nn, l0, w->c0, &e) != UMP_OK) {
