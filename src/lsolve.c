@@ -25,6 +25,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -281,6 +282,8 @@ struct lsolve {
     cholmod_factor *L;
     cholmod_dense *B, *X, *Y, *E;
     double sign;
+    lsolve_lanes *lanes;   /* the solves on the simplicial factor, or NULL: cholmod_solve2 */
+    double *ly;            /* [n] permuted right-hand side of the lane solves */
     double cond;           /* 1-norm condition estimate of the last factorization */
     int valid;             /* factors usable by lsolve_solve */
 };
@@ -306,6 +309,9 @@ static void release_factors(lsolve *s)
         klu_free_numeric(&s->kn, &s->kc);
     if (s->ks)
         klu_free_symbolic(&s->ks, &s->kc);
+    lsolve_lanes_free(&s->lanes);
+    free(s->ly);
+    s->ly = NULL;
     if (s->cholmod_started) {
         cholmod_free_factor(&s->L, &s->cc);
         cholmod_free_sparse(&s->cA, &s->cc);
@@ -533,12 +539,32 @@ static void cholmod_load_values(lsolve *s)
         x[p] = s->sign * s->A->Ax[p];
 }
 
+/* The factor made simplicial (LL', packed, diagonal first) and split into
+ * two lanes for the solves (lsolve_lanes.c). If the split cannot be made,
+ * the solves stay with cholmod_solve2. */
+static ump_status cholmod_lanes(lsolve *s, ump_err *err)
+{
+    lsolve_lanes_free(&s->lanes);
+    if (!cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, s->L, &s->cc) || s->cc.status != CHOLMOD_OK)
+        return cholmod_status(s, "cholmod_change_factor", err);
+    ump_idx n = s->A->n;
+    if (!s->ly && !(s->ly = ump_alloc_array((size_t)n, sizeof *s->ly)))
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "CHOLMOD: out of memory (n = %d)", (int)n);
+    ump_err e;
+    ump_status rc = lsolve_lanes_build(n, s->L->p, s->L->i, s->L->x, &s->lanes, &e);
+    if (rc == UMP_ERR_NOMEM) {
+        *err = e;
+        return rc;
+    }
+    return UMP_OK; /* UMP_ERR_INPUT: an unexpected layout, solved by CHOLMOD */
+}
+
 static ump_status cholmod_numeric_step(lsolve *s, ump_err *err)
 {
     cholmod_load_values(s);
     if (!cholmod_factorize(s->cA, s->L, &s->cc) || s->cc.status != CHOLMOD_OK)
         return cholmod_status(s, "cholmod_factorize", err);
-    return UMP_OK;
+    return cholmod_lanes(s, err);
 }
 
 static ump_status cholmod_setup(lsolve *s, ump_err *err)
@@ -630,6 +656,16 @@ static ump_status solve_sys(lsolve *s, int trans, const double *b, double *x, um
             return klu_status(s, "klu_solve", err);
         return UMP_OK;
     case LSOLVE_CHOLMOD: {
+        if (s->lanes) { /* x = P^T L^-T L^-1 P (sign b) */
+            const int *perm = s->L->Perm;
+            double *y = s->ly;
+            for (ump_idx k = 0; k < n; k++)
+                y[k] = s->sign * b[perm[k]];
+            lsolve_lanes_solve(s->lanes, y);
+            for (ump_idx k = 0; k < n; k++)
+                x[perm[k]] = y[k];
+            return UMP_OK;
+        }
         double *bx = s->B->x;
         for (ump_idx i = 0; i < n; i++)
             bx[i] = s->sign * b[i]; /* (sign A) x = sign b; A^T = A */
@@ -818,6 +854,14 @@ ump_status lsolve_solve(lsolve *s, const double *b, double *x, ump_err *err)
     UMP_CHECK(s->valid, err, UMP_ERR_SINGULAR, "%s: no valid factorization (a refactor failed)",
               lsolve_name(s));
     return solve_sys(s, 0, b, x, err);
+}
+
+int lsolve_lane_work(const lsolve *s, size_t work[3])
+{
+    if (s->kind != LSOLVE_CHOLMOD || !s->lanes)
+        return 0;
+    lsolve_lanes_work(s->lanes, work);
+    return 1;
 }
 
 double lsolve_condest(const lsolve *s)

@@ -143,10 +143,13 @@ static ump_status bins_parallel(part_bins *b, ump_idx nc, const part_set *s, int
     size_t n = s->n;
     ump_idx *off = b->off, *tc = b->tcnt;
     size_t bad = SIZE_MAX;
+    int team = 1; /* the team actually made: 1 when called inside another parallel region */
 #pragma omp parallel num_threads(nt)
     {
-        int t = omp_get_thread_num();
-        size_t i0 = n * (size_t)t / (size_t)nt, i1 = n * (size_t)(t + 1) / (size_t)nt;
+        int t = omp_get_thread_num(), nth = omp_get_num_threads();
+#pragma omp single
+        team = nth;
+        size_t i0 = n * (size_t)t / (size_t)nth, i1 = n * (size_t)(t + 1) / (size_t)nth;
         ump_idx *cnt = tc + (size_t)t * (size_t)nc;
         memset(cnt, 0, sizeof *cnt * (size_t)nc);
         for (size_t i = i0; i < i1; i++) {
@@ -167,7 +170,7 @@ static ump_status bins_parallel(part_bins *b, ump_idx nc, const part_set *s, int
             ump_idx pos = 0;
             for (ump_idx c = 0; c < nc; c++) {
                 off[c] = pos;
-                for (int q = 0; q < nt; q++) {
+                for (int q = 0; q < team; q++) {
                     ump_idx k = tc[(size_t)q * (size_t)nc + c];
                     tc[(size_t)q * (size_t)nc + c] = pos;
                     pos += k;

@@ -7,12 +7,15 @@
 #include "umppm/ump.h"
 
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static long fail_after = -1;   /* test hook: allocations left before failing */
-static size_t requested = 0;   /* bytes requested so far */
+/* atomic: allocations also happen in threads (per-thread work buffers,
+ * concurrent readers); relaxed order, as neither value orders anything */
+static _Atomic long fail_after = -1;   /* test hook: allocations left before failing */
+static _Atomic size_t requested = 0;   /* bytes requested so far */
 
 ump_status ump_fail(ump_err *err, ump_status code, const char *src_file,
                     int src_line, const char *fmt, ...)
@@ -45,11 +48,12 @@ const char *ump_status_name(ump_status s)
 
 static int take_allocation(size_t bytes)
 {
-    if (fail_after == 0)
+    long left = atomic_load_explicit(&fail_after, memory_order_relaxed);
+    if (left == 0)
         return 0;
-    if (fail_after > 0)
-        fail_after--;
-    requested += bytes;
+    if (left > 0)
+        atomic_fetch_sub_explicit(&fail_after, 1, memory_order_relaxed);
+    atomic_fetch_add_explicit(&requested, bytes, memory_order_relaxed);
     return 1;
 }
 
@@ -88,6 +92,6 @@ char *ump_strdup(const char *s)
     return s ? ump_strndup(s, strlen(s)) : NULL;
 }
 
-void ump_alloc_fail_after(long n) { fail_after = n; }
+void ump_alloc_fail_after(long n) { atomic_store_explicit(&fail_after, n, memory_order_relaxed); }
 
-size_t ump_alloc_requested(void) { return requested; }
+size_t ump_alloc_requested(void) { return atomic_load_explicit(&requested, memory_order_relaxed); }

@@ -79,6 +79,10 @@ ump_status lsolve_solve(lsolve *s, const double *b, double *x, ump_err *err);
 /* Which solver was used ("UMFPACK", "KLU", "CHOLMOD") and factor nnz. */
 const char *lsolve_name(const lsolve *s);
 size_t lsolve_factor_nnz(const lsolve *s);
+/* CHOLMOD: the entries of L in the two lanes and the serial top of its
+ * solves (lsolve_lanes.c); returns 0 (work untouched) for the other
+ * solvers or when the factor was not split. */
+int lsolve_lane_work(const lsolve *s, size_t work[3]);
 /* Estimated 1-norm condition number of the factorized matrix (Hager/Higham). */
 double lsolve_condest(const lsolve *s);
 void lsolve_free(lsolve **s);
@@ -125,6 +129,20 @@ typedef struct lsolve_csr {
 #define LSOLVE_MAX_RHS 3       /* systems solved in lockstep (u, v, T) */
 #define LSOLVE_DOT_BLOCK 2048  /* rows per partial sum of a reduction */
 #define LSOLVE_ILU_BLOCK 4096  /* rows per diagonal block of the ILU(0) */
+
+/* Triangular solves with a Cholesky factor in two concurrent lanes
+ * (lsolve_lanes.c): L is simplicial, compressed columns with the diagonal
+ * first (Lp [n+1], Li, Lx borrowed: they must outlive the object). The
+ * split follows the elimination tree; results are the same bits for any
+ * thread count. */
+typedef struct lsolve_lanes lsolve_lanes;
+ump_status lsolve_lanes_build(ump_idx n, const int *Lp, const int *Li, const double *Lx, lsolve_lanes **out,
+                              ump_err *err);
+/* y [n]: in b, out L^-T L^-1 b */
+void lsolve_lanes_solve(const lsolve_lanes *z, double *y);
+/* entries of L in lane 0, lane 1 and the serial top */
+void lsolve_lanes_work(const lsolve_lanes *z, size_t work[3]);
+void lsolve_lanes_free(lsolve_lanes **z);
 
 /* BiCGSTAB workspace for row matrices (lsolve_rows.c); grows with the
  * largest system served. Deterministic for any OpenMP thread count. */

@@ -7,6 +7,8 @@
 #include "testutil.h"
 #include "umppm/lsolve.h"
 
+#include <omp.h>
+
 /* xorshift64*: reproducible pseudo-random numbers in [0, 1) */
 typedef struct rng {
     uint64_t s;
@@ -262,6 +264,72 @@ static void test_direct_agree(void **state)
         lsolve_mat_free(&A);
     }
     free(b);
+}
+
+/* CHOLMOD's solves in two lanes (lsolve_lanes.c): the 5-point Laplacian's
+ * elimination tree splits into two balanced lanes with a small serial top;
+ * the solution equals UMFPACK's, and 1 and 2 threads give the same bits.
+ * A chain (tridiagonal: no two independent subtrees) and a forest (two
+ * decoupled blocks) are solved correctly too. */
+static void test_cholmod_lanes(void **state)
+{
+    (void)state;
+    int m = 60, n = m * m;
+    double *b = malloc(sizeof(double) * n), *x0 = malloc(sizeof(double) * n),
+           *x1 = malloc(sizeof(double) * n), *x2 = malloc(sizeof(double) * n);
+    rng r = {777};
+    for (int i = 0; i < n; i++)
+        b[i] = rnd(&r) - 0.5;
+    lsolve_mat *A = laplacian(m, -1, 0.0);
+    lsolve *s = NULL;
+    ump_err err;
+    assert_int_equal(lsolve_factor(A, LSOLVE_CHOLMOD, &s, &err), UMP_OK);
+    size_t w[3];
+    assert_true(lsolve_lane_work(s, w));
+    size_t tot = w[0] + w[1] + w[2];
+    assert_int_equal(tot, lsolve_factor_nnz(s));
+    double big = (double)(w[0] > w[1] ? w[0] : w[1]), lanes = (double)(w[0] + w[1]);
+    assert_true(big <= 0.53 * lanes);          /* balanced to 3 % */
+    assert_true((double)w[2] <= 0.15 * (double)tot); /* the serial top is small */
+    int nt = omp_get_max_threads();
+    omp_set_num_threads(1);
+    assert_int_equal(lsolve_solve(s, b, x1, &err), UMP_OK);
+    omp_set_num_threads(2);
+    assert_int_equal(lsolve_solve(s, b, x2, &err), UMP_OK);
+    omp_set_num_threads(nt);
+    assert_memory_equal(x1, x2, sizeof(double) * (size_t)n);
+    solve_with(A, LSOLVE_UMFPACK, b, x0);
+    for (int i = 0; i < n; i++)
+        TU_CLOSE(x1[i], x0[i], 1e-12);
+    assert_true(relres(A, x1, b) < 1e-14);
+    lsolve_free(&s);
+    lsolve_mat_free(&A);
+    /* chain and forest */
+    int k = 200;
+    double *d = calloc((size_t)k * k, sizeof(double));
+    for (int forest = 0; forest < 2; forest++) {
+        memset(d, 0, sizeof(double) * (size_t)k * k);
+        for (int i = 0; i < k; i++) {
+            d[i * k + i] = 2.5;
+            if (i + 1 < k && !(forest && i + 1 == k / 2)) {
+                d[i * k + i + 1] = -1;
+                d[(i + 1) * k + i] = -1;
+            }
+        }
+        lsolve_mat *C = from_dense(k, d);
+        assert_int_equal(lsolve_factor(C, LSOLVE_CHOLMOD, &s, &err), UMP_OK);
+        assert_int_equal(lsolve_solve(s, b, x1, &err), UMP_OK);
+        solve_with(C, LSOLVE_UMFPACK, b, x0);
+        for (int i = 0; i < k; i++)
+            TU_CLOSE(x1[i], x0[i], 1e-12);
+        lsolve_free(&s);
+        lsolve_mat_free(&C);
+    }
+    free(d);
+    free(b);
+    free(x0);
+    free(x1);
+    free(x2);
 }
 
 /* new values on the same pattern; a different pattern is refused */
@@ -862,6 +930,7 @@ int main(void)
         cmocka_unit_test(test_triplets),
         cmocka_unit_test(test_small_known),
         cmocka_unit_test(test_direct_agree),
+        cmocka_unit_test(test_cholmod_lanes),
         cmocka_unit_test(test_refactor),
         cmocka_unit_test(test_singular),
         cmocka_unit_test(test_condest),
