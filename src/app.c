@@ -270,17 +270,41 @@ static ump_status write_time(app *a, const rt_time *t, ump_err *err)
         vel[3 * i + (size_t)a->m->ax[0]] = P->u[i];
         vel[3 * i + (size_t)a->m->ax[1]] = P->v[i];
     }
-    if ((rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->U, &fmt, err)) != UMP_OK ||
-        (rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->p, &fmt, err)) != UMP_OK ||
-        (a->T && (rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->T, &fmt, err)) != UMP_OK) ||
-        (a->T && (rc = fio_write_field(td.tmp_dir, t->name, a->pm, a->prgh, &fmt, err)) != UMP_OK) ||
-        (rc = write_phi(a, td.tmp_dir, t->name, &fmt, err)) != UMP_OK ||
-        (rc = fio_write_cloud(td.tmp_dir, t->name, a->um.cloud_name, P->n, pos, vel, P->cell, P->id,
-                              a->ctl.write_precision, err)) != UMP_OK ||
-        (a->T && (rc = fio_write_cloud_field(td.tmp_dir, t->name, a->um.cloud_name, "T", 1, P->n, P->T,
-                                             a->ctl.write_precision, err)) != UMP_OK) ||
-        (a->um.write_quality && (rc = write_quality(a, td.tmp_dir, t->name, err)) != UMP_OK) ||
-        (rc = fio_write_uniform_time(td.tmp_dir, t->name, t->value, t->name, t->index, t->delta_t,
+    /* The mesh fields and the cloud are separate files: formatted and
+     * written by two threads into the hidden directory, which is committed
+     * (or removed) once both are done. The first failure in the serial
+     * order (fields, then cloud) is the one reported. */
+    ump_status rcf = UMP_OK, rcc = UMP_OK;
+    ump_err ef, ec;
+#pragma omp parallel sections num_threads(2) if (sol_threads() > 1)
+    {
+#pragma omp section
+        {
+            if ((rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->U, &fmt, &ef)) != UMP_OK ||
+                (rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->p, &fmt, &ef)) != UMP_OK ||
+                (a->T && (rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->T, &fmt, &ef)) != UMP_OK) ||
+                (a->T && (rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->prgh, &fmt, &ef)) != UMP_OK))
+                (void)0;
+            else
+                rcf = write_phi(a, td.tmp_dir, t->name, &fmt, &ef);
+        }
+#pragma omp section
+        {
+            if ((rcc = fio_write_cloud(td.tmp_dir, t->name, a->um.cloud_name, P->n, pos, vel, P->cell, P->id,
+                                       a->ctl.write_precision, &ec)) != UMP_OK ||
+                (a->T && (rcc = fio_write_cloud_field(td.tmp_dir, t->name, a->um.cloud_name, "T", 1, P->n,
+                                                      P->T, a->ctl.write_precision, &ec)) != UMP_OK))
+                (void)0;
+            else if (a->um.write_quality)
+                rcc = write_quality(a, td.tmp_dir, t->name, &ec);
+        }
+    }
+    if (rcf != UMP_OK || rcc != UMP_OK) {
+        rc = rcf != UMP_OK ? rcf : rcc;
+        *err = rcf != UMP_OK ? ef : ec;
+        goto fail;
+    }
+    if ((rc = fio_write_uniform_time(td.tmp_dir, t->name, t->value, t->name, t->index, t->delta_t,
                                      t->delta_t0, a->ctl.write_precision, a->ctl.time_format_fixed,
                                      err)) != UMP_OK ||
         (rc = fio_timedir_commit(&td, err)) != UMP_OK)

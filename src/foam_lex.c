@@ -356,6 +356,68 @@ static ump_status lex_verbatim(foam_lexer *lx, foam_token *t)
                     lx->line);
 }
 
+/* Decimal text -> double without strtod for the common case (Clinger's
+ * fast path, W. D. Clinger, "How to read floating point numbers
+ * accurately", PLDI 1990): when the significant digits form an integer
+ * m < 2^53 and the power of ten k has |k| <= 22, both m and 10^|k| are
+ * exact doubles and one multiplication or division rounds correctly -- the
+ * value strtod returns. Form: [-]digits[.digits][(e|E)[+|-]digits], at
+ * least one mantissa digit, all of s[0..len). Returns 0 for anything else
+ * (then strtod decides, as before). */
+static int fast_scalar(const char *s, size_t len, double *out)
+{
+    static const double p10[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                   1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                   1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    size_t i = 0;
+    int neg = s[0] == '-', nd = 0, any = 0, k = 0;
+    i += (size_t)neg;
+    uint64_t m = 0;
+    for (int frac = 0; i < len; i++) {
+        char c = s[i];
+        if (c == '.' && !frac) {
+            frac = 1;
+            continue;
+        }
+        if (c < '0' || c > '9')
+            break;
+        any = 1;
+        if (m == 0 && c == '0') { /* leading zeros carry no digit */
+            k -= frac;
+            continue;
+        }
+        if (++nd > 19)
+            return 0;
+        m = m * 10 + (uint64_t)(c - '0');
+        k -= frac;
+    }
+    if (!any)
+        return 0;
+    if (i < len) {
+        if (s[i] != 'e' && s[i] != 'E')
+            return 0;
+        i++;
+        int eneg = 0, e = 0, ed = 0;
+        if (i < len && (s[i] == '+' || s[i] == '-'))
+            eneg = s[i++] == '-';
+        for (; i < len && s[i] >= '0' && s[i] <= '9'; i++, ed++)
+            if (e < 10000)
+                e = e * 10 + (s[i] - '0');
+        if (ed == 0 || i < len)
+            return 0;
+        k += eneg ? -e : e;
+    }
+    double v;
+    if (m == 0)
+        v = 0.0;
+    else if (m > (UINT64_C(1) << 53) || k < -22 || k > 22)
+        return 0;
+    else
+        v = k >= 0 ? (double)m * p10[k] : (double)m / p10[-k];
+    *out = neg ? -v : v;
+    return 1;
+}
+
 /* Number: the run of [0-9+-.eE] as ISstream collects it. Digits only (with
  * an optional leading '-') -> label, or scalar when it overflows int64;
  * otherwise scalar when strtod takes the whole run; otherwise a word. */
@@ -380,6 +442,22 @@ static ump_status lex_number(foam_lexer *lx, foam_token *t)
     for (size_t k = s + 1; k < i && aslabel; k++)
         aslabel = b[k] >= '0' && b[k] <= '9';
     lx->pos = i;
+    if (aslabel && len - (size_t)neg <= 18) { /* below 10^18: cannot overflow int64 */
+        int64_t v = 0;
+        for (size_t k = s + (size_t)neg; k < i; k++)
+            v = v * 10 + (b[k] - '0');
+        t->type = FOAM_TOK_LABEL;
+        t->v.label = neg ? -v : v;
+        return UMP_OK;
+    }
+    if (!aslabel) {
+        double d;
+        if (fast_scalar(b + s, len, &d)) {
+            t->type = FOAM_TOK_SCALAR;
+            t->v.scalar = d;
+            return UMP_OK;
+        }
+    }
     if (aslabel) {
         uint64_t v = 0, lim = neg ? (uint64_t)INT64_MAX + 1u : (uint64_t)INT64_MAX;
         int ok = 1;

@@ -20,6 +20,7 @@
 #include <dlfcn.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -33,6 +34,9 @@
 #define RENAME_EXCHANGE (1 << 1)
 #endif
 
+/* umppmFoam writes the fields and the cloud of a time from two threads:
+ * the counter, the FILE table and the lazy look-ups are under one lock */
+static pthread_mutex_t lk = PTHREAD_MUTEX_INITIALIZER;
 static long count, kill_at;
 static int no_exchange;
 static FILE *writing[256]; /* FILEs opened for writing (fclose is counted) */
@@ -60,10 +64,12 @@ static void *next(const char *name)
  * through memcpy: ISO C has no object-to-function pointer conversion) */
 #define NEXT(type, name) \
     static type real_##name; \
+    pthread_mutex_lock(&lk); \
     if (!real_##name) { \
         void *p_ = next(#name); \
         memcpy(&real_##name, &p_, sizeof p_); \
-    }
+    } \
+    pthread_mutex_unlock(&lk);
 
 typedef int (*open_fn)(const char *, int, ...);
 typedef int (*path_fn)(const char *);
@@ -91,9 +97,11 @@ __attribute__((destructor)) static void shim_fini(void)
 
 static void tick(void)
 {
+    pthread_mutex_lock(&lk);
     count++;
     if (kill_at > 0 && count == kill_at)
         kill(getpid(), SIGKILL);
+    pthread_mutex_unlock(&lk);
 }
 
 static int for_writing(int flags)
@@ -108,21 +116,27 @@ static int mode_writes(const char *mode)
 
 static void remember(FILE *fp)
 {
+    pthread_mutex_lock(&lk);
     for (size_t i = 0; fp && i < sizeof writing / sizeof writing[0]; i++)
         if (!writing[i]) {
             writing[i] = fp;
-            return;
+            break;
         }
+    pthread_mutex_unlock(&lk);
 }
 
 static int forget(FILE *fp)
 {
+    int found = 0;
+    pthread_mutex_lock(&lk);
     for (size_t i = 0; fp && i < sizeof writing / sizeof writing[0]; i++)
         if (writing[i] == fp) {
             writing[i] = NULL;
-            return 1;
+            found = 1;
+            break;
         }
-    return 0;
+    pthread_mutex_unlock(&lk);
+    return found;
 }
 
 int mkdir(const char *path, mode_t mode)

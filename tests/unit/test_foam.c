@@ -6,6 +6,7 @@
  */
 #include "testutil.h"
 
+#include <errno.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -1334,6 +1335,73 @@ static void test_bad_inputs(void **state)
         foam_file_free(&f);
 }
 
+/* Numbers read by the lexer's fast paths (digits-only labels below 10^18
+ * without overflow checks; decimal scalars by Clinger's exact fast path)
+ * against strtod/strtoll, bit for bit: random doubles written in every
+ * printf form and precision, plus the boundary cases of each path. */
+static void test_number_fast_paths(void **state)
+{
+    (void)state;
+    static const char *fixed[] = {"0", "-0", "0.0", "-0.0", ".5", "-.5", "5.", "1e5", "1E-5", "1e+22",
+                                  "1e23", "1e-22", "1e-23", "9007199254740992", "9007199254740993.0",
+                                  "9007199254740993e-3", "123456789012345678", "1234567890123456789",
+                                  "12345678901234567890", "-9223372036854775808", "9223372036854775807",
+                                  "9223372036854775808", "0.000000000000000000000000001", "1.7976931348623157e308",
+                                  "4.9e-324", "2.2250738585072014e-308", "0.1", "0.2", "0.3", "1.5e0",
+                                  "00012.5000", "-000", "1e0000000000000000000001", "123.456e-7"};
+    size_t nf = sizeof fixed / sizeof fixed[0], nr = 20000, cap = (nf + 8 * nr) * 40 + 256;
+    char *text = malloc(cap), **words = malloc(sizeof(char *) * (nf + 8 * nr));
+    size_t len = (size_t)snprintf(text, cap, HDR("dictionary") "l (");
+    size_t nw = 0;
+    for (size_t k = 0; k < nf; k++) {
+        words[nw++] = text + len + 1;
+        len += (size_t)snprintf(text + len, cap - len, " %s", fixed[k]);
+    }
+    uint64_t x = 88172645463325252ULL;
+    for (size_t k = 0; k < nr; k++) {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        double v = (double)(x >> 11) / 9007199254740992.0 * pow(10.0, (double)((int)(x % 41) - 20));
+        if (x & 1)
+            v = -v;
+        static const char *fmt[] = {"%.*g", "%.*e", "%.*f", "%.*G"};
+        for (int q = 0; q < 8; q++) {
+            int prec = 1 + (int)((x >> (8 + 4 * q)) % 17);
+            words[nw++] = text + len + 1;
+            text[len++] = ' ';
+            len += (size_t)snprintf(text + len, cap - len, fmt[q % 4], q % 4 == 2 ? prec % 8 : prec, v);
+        }
+    }
+    len += (size_t)snprintf(text + len, cap - len, " );\n");
+    foam_file *f = parse_ok(text);
+    const foam_entry *e = E(f->dict, "l");
+    assert_int_equal(e->ntok, nw + 2);
+    for (size_t k = 0; k < nw; k++) {
+        const foam_token *t = &e->tok[k + 1];
+        char w[64];
+        size_t wl = strcspn(words[k], " )");
+        memcpy(w, words[k], wl);
+        w[wl] = '\0';
+        char *end;
+        if (t->type == FOAM_TOK_LABEL) {
+            errno = 0;
+            long long want = strtoll(w, &end, 10);
+            assert_int_equal(errno, 0);
+            assert_true(*end == '\0' && (long long)t->v.label == want);
+        } else {
+            assert_int_equal(t->type, FOAM_TOK_SCALAR);
+            double want = strtod(w, &end);
+            assert_true(*end == '\0');
+            if (memcmp(&want, &t->v.scalar, sizeof want) != 0)
+                fail_msg("'%s': lexer %.17g, strtod %.17g", w, t->v.scalar, want);
+        }
+    }
+    foam_file_free(&f);
+    free(words);
+    free(text);
+}
+
 /* ---- allocation failures at every point ------------------------------------------------- */
 
 static void test_alloc_failures(void **state)
@@ -1496,6 +1564,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_tokens),
+        cmocka_unit_test(test_number_fast_paths),
         cmocka_unit_test(test_comments_lines),
         cmocka_unit_test(test_header_and_empty),
         cmocka_unit_test(test_nested_dicts),
