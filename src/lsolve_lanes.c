@@ -43,6 +43,8 @@ struct lsolve_lanes {
     ump_idx *top;              /* [ntop] the top columns, increasing */
     ump_idx ntop;
     ump_idx *tpos;             /* [n] position of a column in top, or -1 */
+    int *split;                /* [n] lane columns: first entry in a top row (rows ascend, and
+                                  a column's ancestors in its own subtree precede the top ones) */
     double *acc;               /* [2 ntop] the lanes' updates of the top rows */
     size_t work[3];            /* entries of L in lane 0, lane 1, top */
 };
@@ -56,6 +58,7 @@ void lsolve_lanes_free(lsolve_lanes **pz)
     free(z->col[1]);
     free(z->top);
     free(z->tpos);
+    free(z->split);
     free(z->acc);
     free(z);
     *pz = NULL;
@@ -112,17 +115,13 @@ ump_status lsolve_lanes_build(ump_idx n, const int *Lp, const int *Li, const dou
                           (int)j);
             goto done;
         }
-        ump_idx p = -1;
-        for (int q = Lp[j] + 1; q < Lp[j + 1]; q++) {
-            if (Li[q] <= j || Li[q] >= n) {
-                rc = UMP_FAIL(err, UMP_ERR_INPUT, "lsolve: factor column %d has row %d above the diagonal",
-                              (int)j, Li[q]);
+        for (int q = Lp[j] + 1; q < Lp[j + 1]; q++)
+            if (Li[q] <= Li[q - 1] || Li[q] >= n) {
+                rc = UMP_FAIL(err, UMP_ERR_INPUT, "lsolve: factor column %d: rows not ascending below the "
+                              "diagonal (row %d)", (int)j, Li[q]);
                 goto done;
             }
-            if (p < 0 || Li[q] < p)
-                p = Li[q];
-        }
-        parent[j] = p;
+        parent[j] = Lp[j + 1] - Lp[j] > 1 ? Li[Lp[j] + 1] : -1;
         W[j] = (size_t)(Lp[j + 1] - Lp[j]);
     }
     for (ump_idx j = 0; j < n; j++) /* children before parents: parent(j) > j */
@@ -193,6 +192,7 @@ ump_status lsolve_lanes_build(ump_idx n, const int *Lp, const int *Li, const dou
         !(z->col[1] = ump_alloc_array((size_t)z->ncol[1] + 1, sizeof(ump_idx))) ||
         !(z->top = ump_alloc_array((size_t)z->ntop + 1, sizeof(ump_idx))) ||
         !(z->tpos = ump_alloc_array((size_t)n, sizeof(ump_idx))) ||
+        !(z->split = ump_alloc_array((size_t)n, sizeof(int))) ||
         !(z->acc = ump_alloc_array(2 * (size_t)z->ntop + 1, sizeof(double)))) {
         rc = UMP_FAIL(err, UMP_ERR_NOMEM, "lsolve: out of memory splitting a factor of order %d", (int)n);
         goto done;
@@ -208,6 +208,18 @@ ump_status lsolve_lanes_build(ump_idx n, const int *Lp, const int *Li, const dou
             z->tpos[j] = kt;
             z->top[kt++] = j;
         }
+    }
+    for (ump_idx j = 0; j < n; j++) {
+        int q = Lp[j] + 1;
+        while (q < Lp[j + 1] && z->tpos[Li[q]] < 0)
+            q++;
+        z->split[j] = q;
+        for (; q < Lp[j + 1]; q++)
+            if (z->tpos[Li[q]] < 0) { /* cannot happen for an elimination tree: keep CHOLMOD's solve */
+                rc = UMP_FAIL(err, UMP_ERR_INPUT, "lsolve: factor column %d: a lane row after a top row",
+                              (int)j);
+                goto done;
+            }
     }
     *out = z;
     z = NULL;
@@ -230,19 +242,18 @@ static void lane_forward(const lsolve_lanes *z, int l, double *restrict y)
     const int *restrict Lp = z->Lp, *restrict Li = z->Li;
     const double *restrict Lx = z->Lx;
     const ump_idx *restrict tpos = z->tpos, *restrict col = z->col[l];
+    const int *restrict split = z->split;
     double *restrict acc = z->acc + (size_t)l * (size_t)z->ntop;
     memset(acc, 0, sizeof *acc * (size_t)z->ntop);
     for (ump_idx a = 0; a < z->ncol[l]; a++) {
         ump_idx j = col[a];
         double yj = y[j] / Lx[Lp[j]];
         y[j] = yj;
-        for (int q = Lp[j] + 1; q < Lp[j + 1]; q++) {
-            ump_idx i = Li[q], t = tpos[i];
-            if (t >= 0)
-                acc[t] += Lx[q] * yj;
-            else
-                y[i] -= Lx[q] * yj;
-        }
+        int q = Lp[j] + 1, qs = split[j];
+        for (; q < qs; q++)
+            y[Li[q]] -= Lx[q] * yj;
+        for (; q < Lp[j + 1]; q++)
+            acc[tpos[Li[q]]] += Lx[q] * yj;
     }
 }
 
