@@ -25,6 +25,13 @@
  * maxVelocity or 100 x speed_scale()) runs before anything is written, the
  * log is flushed and checked, and a SIGINT/SIGTERM (stopsig) makes that step
  * a write time and the last one.
+ *
+ * runTimeModifiable (README "Editing controlDict during a run"): before each
+ * step system/controlDict's stamp (case_file_stamp) is compared with the
+ * version read last; a new version is re-read and checked as at start-up
+ * (reread_control) and applied to the time (rt_reread), the write settings
+ * and the function objects, or refused with a warning, the run going on
+ * with its settings. The solver is not involved: it gets deltaT per step.
  */
 #include "umppm/app.h"
 #include "umppm/case.h"
