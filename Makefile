@@ -71,14 +71,22 @@ unit: $(UNIT_BIN) $(APP)
 	@set -e; for t in $(UNIT_BIN); do echo "== $$t"; $$t; done
 
 # Tests against OpenFOAM's own tools (blockMesh, gmshToFoam, postProcess...).
-integration: $(APP) $(TOOLS) $(BUILD)/geomcheck $(BUILD)/write_cavity_fields $(BUILD)/write_cloud $(BUILD)/killshim.so
+integration: $(APP) $(TOOLS) $(BUILD)/geomcheck $(BUILD)/write_cavity_fields $(BUILD)/write_cloud $(BUILD)/killshim.so \
+             $(BUILD)/editshim.so
 	@UMPPMFOAM=$(abspath $(APP)) GEOMCHECK=$(abspath $(BUILD)/geomcheck) KILLSHIM=$(abspath $(BUILD)/killshim.so) \
+	    EDITSHIM=$(abspath $(BUILD)/editshim.so) \
 	    WRITE_CAVITY_FIELDS=$(abspath $(BUILD)/write_cavity_fields) \
 	    WRITE_CLOUD=$(abspath $(BUILD)/write_cloud) TOOLDIR=$(abspath $(BUILD)/tools) tests/integration/run_all.sh
 
 # The LD_PRELOAD shim of test_nothing_lost.sh (SIGKILL at the k-th write
 # call): a plain shared object, never sanitized (it is preloaded).
 $(BUILD)/killshim.so: tests/integration/killshim.c
+	@mkdir -p $(dir $@)
+	$(CC) -shared -fPIC -std=c11 -Wall -Wextra -Wpedantic $(WERROR) -O2 -o $@ $< -ldl
+
+# The LD_PRELOAD shim of test_runtime_modifiable.sh (renames a prepared
+# controlDict over the case's when a chosen time directory is made).
+$(BUILD)/editshim.so: tests/integration/editshim.c
 	@mkdir -p $(dir $@)
 	$(CC) -shared -fPIC -std=c11 -Wall -Wextra -Wpedantic $(WERROR) -O2 -o $@ $< -ldl
 

@@ -25,6 +25,13 @@
  * maxVelocity or 100 x speed_scale()) runs before anything is written, the
  * log is flushed and checked, and a SIGINT/SIGTERM (stopsig) makes that step
  * a write time and the last one.
+ *
+ * runTimeModifiable (README "Editing controlDict during a run"): before each
+ * step system/controlDict's stamp (case_file_stamp) is compared with the
+ * version read last; a new version is re-read and checked as at start-up
+ * (reread_control) and applied to the time (rt_reread), the write settings
+ * and the function objects, or refused with a warning, the run going on
+ * with its settings. The solver is not involved: it gets deltaT per step.
  */
 #include "umppm/app.h"
 #include "umppm/case.h"
@@ -71,6 +78,12 @@ typedef struct app {
     app_options opt;
     double u_scale;          /* divergence guard: the speed scale ... */
     double u_bound;          /* ... and the bound on |U| (maxVelocity) */
+    /* runTimeModifiable: system/controlDict is watched while ctl_watch */
+    int ctl_watch;
+    int ctl_missing;         /* the last stat failed (warned once) */
+    case_stamp ctl_stamp;    /* the version read last */
+    char ctl_path[4200];     /* <case>/system/controlDict */
+    char ctl_abs[4200];      /* the same, absolute, for the log */
 } app;
 
 static double wall_seconds(void)
@@ -608,9 +621,10 @@ static ump_status read_buoyant(app *a, const char *tname, ump_err *err)
     return UMP_OK;
 }
 
-/* Mesh-only, once at the start: function object c's patch, its 2-D
- * boundary faces (f >= ninternal), their 3-D areas and centres. */
-static ump_status fo_resolve(app *a, fob_common *c, ump_err *err)
+/* Mesh-only, at the start and at a re-read of controlDict: function object
+ * c's patch, its 2-D boundary faces (f >= ninternal), their 3-D areas and
+ * centres; *cap grows to the number of faces. */
+static ump_status fo_resolve(app *a, fob_common *c, size_t *cap_faces, ump_err *err)
 {
     int pi = -1;
     for (int p = 0; p < a->pm->npatches; p++)
@@ -643,8 +657,8 @@ static ump_status fo_resolve(app *a, fob_common *c, ump_err *err)
                       "boundary faces in 2-D (empty or cyclic)", a->case_dir, c->name, c->patch);
     else
         rc = fob_set_faces(c, n, face, area, x3, err);
-    if (n > a->fo_cap)
-        a->fo_cap = n;
+    if (n > *cap_faces)
+        *cap_faces = n;
 done:
     free(face);
     free(area);
@@ -652,26 +666,59 @@ done:
     return rc;
 }
 
-/* Resolve every function object's patch, check its fields, size the
- * per-face scratch. */
-static ump_status fo_setup(app *a, ump_err *err)
+/* Resolve every function object's patch of L and check its fields; *cap
+ * gets the largest patch (faces). */
+static ump_status fo_resolve_list(app *a, fob_list *L, size_t *cap, ump_err *err)
 {
-    for (int i = 0; i < a->fo.n; i++)
-        UMP_CALL(fo_resolve(a, &a->fo.nu[i].c, err));
-    for (int i = 0; i < a->fo.nsf; i++) {
-        fob_sfv *f = &a->fo.sf[i];
-        UMP_CALL(fo_resolve(a, &f->c, err));
+    *cap = 0;
+    for (int i = 0; i < L->n; i++)
+        UMP_CALL(fo_resolve(a, &L->nu[i].c, cap, err));
+    for (int i = 0; i < L->nsf; i++) {
+        fob_sfv *f = &L->sf[i];
+        UMP_CALL(fo_resolve(a, &f->c, cap, err));
         for (int j = 0; j < f->nfields; j++)
             if (!a->bu.on && (f->field[j] == FOB_FIELD_T || f->field[j] == FOB_FIELD_P_RGH))
                 return UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/controlDict: function object '%s': field '%s' "
                                 "exists only in a buoyant case (constant/g)", a->case_dir, f->c.name,
                                 fob_field_name(f->field[j]));
     }
-    size_t c = a->fo_cap ? a->fo_cap : 1;
-    if (!(a->fo_dTdn = ump_alloc_array(c, sizeof(double))) || !(a->fo_Tf = ump_alloc_array(c, sizeof(double))) ||
-        !(a->fo_val = ump_alloc_array(3 * FOB_MAX_FIELDS * c, sizeof(double))))
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
     return UMP_OK;
+}
+
+/* The per-face scratch of the function objects, for patches of up to cap
+ * faces (grown, never shrunk: a->fo_cap is what it holds). */
+static ump_status fo_scratch(app *a, size_t cap, ump_err *err)
+{
+    if (cap <= a->fo_cap && a->fo_val)
+        return UMP_OK;
+    size_t c = cap > a->fo_cap ? cap : a->fo_cap;
+    if (c == 0)
+        c = 1;
+    double *d = ump_alloc_array(c, sizeof(double)), *T = ump_alloc_array(c, sizeof(double));
+    double *v = ump_alloc_array(3 * FOB_MAX_FIELDS * c, sizeof(double));
+    if (!d || !T || !v) {
+        free(d);
+        free(T);
+        free(v);
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
+    }
+    free(a->fo_dTdn);
+    free(a->fo_Tf);
+    free(a->fo_val);
+    a->fo_dTdn = d;
+    a->fo_Tf = T;
+    a->fo_val = v;
+    a->fo_cap = c;
+    return UMP_OK;
+}
+
+/* Resolve the function objects' patches, check their fields, size the
+ * per-face scratch. */
+static ump_status fo_setup(app *a, ump_err *err)
+{
+    size_t cap;
+    UMP_CALL(fo_resolve_list(a, &a->fo, &cap, err));
+    return fo_scratch(a, cap, err);
 }
 
 /* Patch data of a Nusselt function object for this step. */
@@ -725,11 +772,17 @@ static void fo_sfv_values(app *a, const fob_sfv *f, fob_patch_field *vals)
     }
 }
 
-/* Run the function objects after a step (and at the start, step 0). */
-static ump_status run_functions(app *a, const rt_time *t, long step, const char *start_name, ump_err *err)
+/* Run the function objects after a step (and at the start, step 0). With
+ * only_new, only those a re-read of controlDict has just made (not
+ * continued), at the time of the re-read: OpenFOAM's Time::run executes
+ * them right after readModifiedObjects. */
+static ump_status run_functions(app *a, const rt_time *t, long step, const char *start_name, int only_new,
+                                ump_err *err)
 {
     for (int i = 0; i < a->fo.n; i++) {
         fob_nusselt *f = &a->fo.nu[i];
+        if (only_new && f->c.continued)
+            continue;
         int series = step == 0 || fob_due(&f->c, step, t->write_time), local = t->write_time && step > 0;
         if (!series && !local)
             continue;
@@ -746,7 +799,8 @@ static ump_status run_functions(app *a, const rt_time *t, long step, const char 
     }
     for (int i = 0; i < a->fo.nsf; i++) {
         fob_sfv *f = &a->fo.sf[i];
-        if (step == 0 || !fob_due(&f->c, step, t->write_time)) /* OpenFOAM's: not at the start */
+        if (step == 0 || !fob_due(&f->c, step, t->write_time) || /* OpenFOAM's: not at the start */
+            (only_new && f->c.continued))
             continue;
         fob_patch_field vals[FOB_MAX_FIELDS];
         fo_sfv_values(a, f, vals);
@@ -861,6 +915,146 @@ ump_status app_recover(const char *case_dir, ump_err *err)
     return fio_recover(case_dir, recover_report, NULL, err);
 }
 
+/* runTimeModifiable (README "Running"): the words of the enumerations, for
+ * the log. */
+static const char *const stop_at_word[] = {"endTime", "writeNow", "noWriteNow", "nextWrite"};
+static const char *const write_control_word[] = {"timeStep", "runTime", "adjustableRunTime", "cpuTime",
+                                                 "clockTime"};
+static const char *const time_format_word[] = {"general", "fixed", "scientific"};
+static const char *const on_off[] = {"off", "on"};
+
+/* Append ", key old -> new" to buf. */
+static void note_change(char *buf, size_t len, const char *key, const char *was, const char *now)
+{
+    size_t n = strlen(buf);
+    snprintf(buf + n, len - n, "%s%s %s -> %s", n ? ", " : "", key, was, now);
+}
+
+static void note_number(char *buf, size_t len, const char *key, double was, double now)
+{
+    char w[32], v[32];
+    snprintf(w, sizeof w, "%.15g", was);
+    snprintf(v, sizeof v, "%.15g", now);
+    if (was != now)
+        note_change(buf, len, key, w, v);
+}
+
+static void note_word(char *buf, size_t len, const char *key, const char *was, const char *now)
+{
+    if (strcmp(was, now) != 0)
+        note_change(buf, len, key, was, now);
+}
+
+/* The settings of o that c changes, "endTime 0.5 -> 0.3, deltaT ...". */
+static void control_changes(const case_control *o, const case_control *c, int delta_t_fixed, char *buf,
+                            size_t len)
+{
+    buf[0] = '\0';
+    note_word(buf, len, "stopAt", stop_at_word[o->stop_at], stop_at_word[c->stop_at]);
+    if (c->stop_at == CASE_STOP_ENDTIME)
+        note_number(buf, len, "endTime", o->stop_at == CASE_STOP_ENDTIME ? o->end_time : 1e15, c->end_time);
+    note_number(buf, len, delta_t_fixed ? "deltaT (not used: adjustTimeStep has set the step)" : "deltaT",
+                o->delta_t, c->delta_t);
+    note_word(buf, len, "writeControl", write_control_word[o->write_control], write_control_word[c->write_control]);
+    note_number(buf, len, "writeInterval", o->write_interval, c->write_interval);
+    note_number(buf, len, "purgeWrite", o->purge_write, c->purge_write);
+    note_word(buf, len, "writeFormat", o->write_binary ? "binary" : "ascii", c->write_binary ? "binary" : "ascii");
+    note_number(buf, len, "writePrecision", o->write_precision, c->write_precision);
+    note_word(buf, len, "writeCompression", on_off[o->write_compression], on_off[c->write_compression]);
+    note_word(buf, len, "timeFormat", time_format_word[o->time_format_fixed], time_format_word[c->time_format_fixed]);
+    note_number(buf, len, "timePrecision", o->time_precision, c->time_precision);
+    note_word(buf, len, "adjustTimeStep", on_off[o->adjust_time_step], on_off[c->adjust_time_step]);
+    note_number(buf, len, "maxCo", o->max_co, c->max_co);
+    note_number(buf, len, "maxDeltaT", o->max_delta_t, c->max_delta_t);
+    note_word(buf, len, "runTimeModifiable", o->run_time_modifiable ? "true" : "false",
+              c->run_time_modifiable ? "true" : "false");
+}
+
+/* runTimeModifiable, at the start of each time step (Time::run calls
+ * readModifiedObjects): when system/controlDict is another version than
+ * the one read last (case_stamp), re-read it with every check of the
+ * start-up (case_read_control, endTime not before the run's start time
+ * t0, the function objects and their patches). A file that fails them is
+ * a warning naming the file, the line and the entry, and the run goes on
+ * with the settings it has; otherwise t, a->ctl and the function objects
+ * take the new settings. Only running out of memory, or a file in the way
+ * of a write time the new settings plan, is an error. */
+static ump_status reread_control(app *a, rt_time *t, double t0, const char *tname, long step, ump_err *err)
+{
+    case_stamp now;
+    if (case_file_stamp(a->ctl_path, &now) != 0) {
+        if (!a->ctl_missing)
+            printf("--> umppmFoam Warning: %s: cannot read (%s); the run continues with the settings it has\n",
+                   a->ctl_abs, strerror(errno));
+        a->ctl_missing = 1;
+        return UMP_OK;
+    }
+    a->ctl_missing = 0;
+    if (case_stamp_equal(&now, &a->ctl_stamp))
+        return UMP_OK;
+    a->ctl_stamp = now;
+    printf("regIOobject::readIfModified() : Re-reading object controlDict from file \"%s\"\n", a->ctl_abs);
+    case_control c;
+    fob_list fo;
+    memset(&fo, 0, sizeof fo);
+    size_t cap = 0;
+    ump_err e;
+    memset(&e, 0, sizeof e);
+    ump_status rc;
+    if ((rc = case_read_control(a->case_dir, &c, &e)) != UMP_OK ||
+        (rc = case_check_start(a->case_dir, &c, tname, t0, &e)) != UMP_OK ||
+        (rc = fob_read(a->case_dir, &fo, &e)) != UMP_OK || (rc = fo_resolve_list(a, &fo, &cap, &e)) != UMP_OK) {
+        fob_free(&fo);
+        if (rc == UMP_ERR_NOMEM) {
+            *err = e;
+            return rc;
+        }
+        printf("--> umppmFoam Warning: %s; the re-read controlDict is not used: the run continues with the "
+               "settings it has\n\n", e.msg);
+        return UMP_OK;
+    }
+    char what[2048];
+    control_changes(&a->ctl, &c, t->delta_t_changed, what, sizeof what);
+    printf("controlDict: %s\n", what[0] ? what : "no setting changed");
+    rt_reread(t, &c);
+    a->ctl = c;
+    if (!c.run_time_modifiable) {
+        a->ctl_watch = 0;
+        printf("runTimeModifiable false: system/controlDict is no longer watched\n");
+    }
+    if (!rt_running(t))
+        printf("endTime %g is not after the current time %s: the run ends\n", t->ctl.end_time, t->name);
+    /* the function objects: the new list replaces the old one (not run
+     * with -noFunctionObjects, but checked) */
+    if (a->opt.no_function_objects) {
+        fob_free(&fo);
+    } else {
+        if ((rc = fo_scratch(a, cap, err)) != UMP_OK) {
+            fob_free(&fo);
+            return rc;
+        }
+        fob_take_over(&fo, &a->fo, t->name);
+        if (fo.n + fo.nsf + a->fo.n + a->fo.nsf > 0) {
+            printf("Function objects:");
+            for (int i = 0; i < fo.n + fo.nsf; i++) {
+                const fob_common *fc = i < fo.n ? &fo.nu[i].c : &fo.sf[i - fo.n].c;
+                printf("%s %s (%s, %s)", i ? "," : "", fc->name, i < fo.n ? "nusseltNumber" : "surfaceFieldValue",
+                       fc->continued ? "continued" : "new");
+            }
+            printf("%s\n", fo.n + fo.nsf ? "" : " none");
+        }
+        fob_free(&a->fo);
+        a->fo = fo;
+        /* the new ones run now, on the state of the current time */
+        if ((rc = run_functions(a, t, step, tname, 1, err)) != UMP_OK)
+            return rc;
+    }
+    if (fo.ignored[0])
+        printf("--> umppmFoam Warning: function objects not run by umppmFoam (ignored): %s\n", fo.ignored);
+    printf("\n");
+    return check_planned_writes(a, t, err);
+}
+
 ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
 {
     app a;
@@ -874,6 +1068,17 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     clock_t cpu0 = clock();
     sol_settings s;
     printf("Create time\n\n");
+    snprintf(a.ctl_path, sizeof a.ctl_path, "%s/system/controlDict", case_dir);
+    {
+        char abs[4096];
+        if (realpath(case_dir, abs))
+            snprintf(a.ctl_abs, sizeof a.ctl_abs, "%s/system/controlDict", abs);
+        else
+            snprintf(a.ctl_abs, sizeof a.ctl_abs, "%s", a.ctl_path);
+    }
+    /* the version read now: taken before the read, so an edit in between
+     * is seen at the first step */
+    (void)case_file_stamp(a.ctl_path, &a.ctl_stamp);
     if ((rc = app_recover(case_dir, err)) != UMP_OK ||
         (rc = case_read_control(case_dir, &a.ctl, err)) != UMP_OK ||
         (rc = case_start_dir(case_dir, &a.ctl, tname, sizeof tname, &t0, err)) != UMP_OK ||
@@ -941,9 +1146,17 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     long step = 0;
     double cont_cumulative = 0;
     double stage_cpu[SOL_NSTAGES] = {0}, stage_wall[SOL_NSTAGES] = {0};
-    if ((rc = fo_setup(&a, err)) != UMP_OK || (rc = run_functions(&a, &t, 0, tname, err)) != UMP_OK)
+    if ((rc = fo_setup(&a, err)) != UMP_OK || (rc = run_functions(&a, &t, 0, tname, 0, err)) != UMP_OK)
         goto done;
+    a.ctl_watch = a.ctl.run_time_modifiable;
     while (rt_running(&t)) {
+        /* runTimeModifiable: Time::run re-reads controlDict before each step */
+        if (a.ctl_watch) {
+            if ((rc = reread_control(&a, &t, t0, tname, step, err)) != UMP_OK)
+                goto done;
+            if (!rt_running(&t))
+                break;
+        }
         sol_courant(a.S, t.delta_t, &co_mean, &co_max);
         printf("Courant Number mean: %g max: %g\n", co_mean, co_max);
         if (a.ctl.adjust_time_step) {
@@ -985,7 +1198,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         int sig = stopsig_pending();
         if (sig)
             t.write_time = 1; /* stopAt writeNow: this step is written, the run ends */
-        if ((rc = run_functions(&a, &t, step, tname, err)) != UMP_OK)
+        if ((rc = run_functions(&a, &t, step, tname, 0, err)) != UMP_OK)
             goto done;
         if (t.write_time) {
             if ((rc = write_time(&a, &t, err)) != UMP_OK)
@@ -996,6 +1209,9 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         if (sig)
             printf("sigStopAtWriteNow : %s received: time %s written, stopping (stopAt writeNow)\n\n",
                    stopsig_name(sig), t.name);
+        else if (!rt_running(&t) && t.ctl.stop_at != CASE_STOP_ENDTIME)
+            printf("stopAt %s: time %s %s, stopping\n\n", stop_at_word[t.ctl.stop_at], t.name,
+                   t.write_time ? "written" : "not written");
         errno = 0;
         if (fflush(stdout) != 0 || ferror(stdout)) {
             rc = UMP_FAIL(err, UMP_ERR_IO, "standard output: cannot write the log (%s); stopped after time %s",

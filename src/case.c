@@ -65,13 +65,15 @@ static ump_status get_positive(const foam_dict *d, const char *key, double *v, u
 /* startTime, endTime, deltaT, writeInterval (and maxCo, maxDeltaT) must be
  * finite numbers: `endTime nan` would end the run before its first step
  * and `endTime 1e400` (inf) never; deltaT and writeInterval > 0 (checked by
- * get_positive); endTime >= startTime. */
+ * get_positive); endTime >= startTime. endTime only counts with stopAt
+ * endTime (Time::readDict reads it for no other stopAt). */
 static ump_status check_times(const foam_dict *d, const case_control *c, ump_err *err)
 {
+    const int use_end = c->stop_at == CASE_STOP_ENDTIME;
     const struct {
         const char *key;
         double v;
-    } t[] = {{"startTime", c->start_time}, {"endTime", c->end_time}, {"deltaT", c->delta_t},
+    } t[] = {{"startTime", c->start_time}, {"endTime", use_end ? c->end_time : 0}, {"deltaT", c->delta_t},
              {"writeInterval", c->write_interval}, {"maxCo", c->max_co}};
     for (size_t i = 0; i < sizeof t / sizeof t[0]; i++)
         if (!isfinite(t[i].v)) {
@@ -84,7 +86,7 @@ static ump_status check_times(const foam_dict *d, const case_control *c, ump_err
         return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: maxDeltaT must be positive, found %g", e ? e->file : "?",
                         e ? e->line : 0, c->max_delta_t);
     }
-    if (c->start_from == CASE_START_STARTTIME && c->end_time < c->start_time) {
+    if (use_end && c->start_from == CASE_START_STARTTIME && c->end_time < c->start_time) {
         const foam_entry *e = foam_dict_find(d, "endTime", 0);
         return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: endTime %g is before startTime %g: nothing to run",
                         e ? e->file : "?", e ? e->line : 0, c->end_time, c->start_time);
@@ -141,7 +143,13 @@ ump_status case_read_control(const char *case_dir, case_control *c, ump_err *err
     } else if ((rc = foam_get_scalar_or(d, "startTime", 0, &c->start_time, err)) != UMP_OK) {
         goto done;
     }
-    if ((rc = foam_get_scalar(d, "endTime", &c->end_time, err)) != UMP_OK ||
+    /* stopAt writeNow, noWriteNow, nextWrite: endTime is not read (it is
+     * GREAT, Time::readDict), so it may be absent */
+    if (c->stop_at == CASE_STOP_ENDTIME)
+        rc = foam_get_scalar(d, "endTime", &c->end_time, err);
+    else
+        rc = foam_get_scalar_or(d, "endTime", 1e15, &c->end_time, err);
+    if (rc != UMP_OK ||
         (rc = get_positive(d, "deltaT", &c->delta_t, err)) != UMP_OK ||
         (rc = get_positive(d, "writeInterval", &c->write_interval, err)) != UMP_OK ||
         (rc = foam_get_label_or(d, "purgeWrite", 0, &purge, err)) != UMP_OK ||
@@ -830,8 +838,30 @@ int case_name_is_safe(const char *name)
 ump_status case_check_start(const char *case_dir, const case_control *c, const char *tname, double t0,
                             ump_err *err)
 {
-    if (c->end_time < t0 && !(fabs(c->end_time - t0) <= 1e-12 * fabs(t0)))
+    if (c->stop_at == CASE_STOP_ENDTIME && c->end_time < t0 && !(fabs(c->end_time - t0) <= 1e-12 * fabs(t0)))
         return UMP_FAIL(err, UMP_ERR_INPUT, "%s/system/controlDict: endTime %g is before the start time %s: "
                         "nothing to run", case_dir, c->end_time, tname);
     return UMP_OK;
+}
+
+int case_file_stamp(const char *path, case_stamp *s)
+{
+    struct stat st;
+    memset(s, 0, sizeof *s);
+    if (stat(path, &st) != 0)
+        return -1;
+    s->dev = (unsigned long long)st.st_dev;
+    s->ino = (unsigned long long)st.st_ino;
+    s->size = (long long)st.st_size;
+    s->mtime_sec = (long long)st.st_mtim.tv_sec;
+    s->mtime_nsec = (long)st.st_mtim.tv_nsec;
+    s->ctime_sec = (long long)st.st_ctim.tv_sec;
+    s->ctime_nsec = (long)st.st_ctim.tv_nsec;
+    return 0;
+}
+
+int case_stamp_equal(const case_stamp *a, const case_stamp *b)
+{
+    return a->dev == b->dev && a->ino == b->ino && a->size == b->size && a->mtime_sec == b->mtime_sec &&
+           a->mtime_nsec == b->mtime_nsec && a->ctime_sec == b->ctime_sec && a->ctime_nsec == b->ctime_nsec;
 }

@@ -227,6 +227,42 @@ void fob_free(fob_list *L)
     L->n = L->nsf = 0;
 }
 
+/* Move c's open series to n (and nothing else). */
+static void move_series(fob_common *n, fob_common *c)
+{
+    n->fp = c->fp;
+    snprintf(n->path, sizeof n->path, "%s", c->path);
+    snprintf(n->suffix, sizeof n->suffix, "%s", c->suffix);
+    n->continued = 1;
+    c->fp = NULL;
+}
+
+void fob_take_over(fob_list *nw, fob_list *old, const char *time_name)
+{
+    for (int i = 0; i < nw->n; i++) {
+        fob_nusselt *n = &nw->nu[i];
+        snprintf(n->c.suffix, sizeof n->c.suffix, "%s", time_name);
+        for (int j = 0; j < old->n; j++) {
+            const fob_nusselt *o = &old->nu[j];
+            if (strcmp(n->c.name, o->c.name) == 0 && strcmp(n->c.patch, o->c.patch) == 0 &&
+                n->length == o->length && n->kappa == o->kappa && n->has_T1 == o->has_T1 &&
+                n->has_T2 == o->has_T2 && (!n->has_T1 || n->T1 == o->T1) && (!n->has_T2 || n->T2 == o->T2) &&
+                n->snGrad == o->snGrad)
+                move_series(&n->c, &old->nu[j].c);
+        }
+    }
+    for (int i = 0; i < nw->nsf; i++) {
+        fob_sfv *n = &nw->sf[i];
+        snprintf(n->c.suffix, sizeof n->c.suffix, "%s", time_name);
+        for (int j = 0; j < old->nsf; j++) {
+            const fob_sfv *o = &old->sf[j];
+            if (strcmp(n->c.name, o->c.name) == 0 && strcmp(n->c.patch, o->c.patch) == 0 && n->op == o->op &&
+                n->nfields == o->nfields && memcmp(n->field, o->field, (size_t)n->nfields * sizeof n->field[0]) == 0)
+                move_series(&n->c, &old->sf[j].c);
+        }
+    }
+}
+
 ump_status fob_set_faces(fob_common *c, size_t n, const ump_idx *face, const double *area, const double *x3,
                          ump_err *err)
 {
@@ -289,7 +325,7 @@ static ump_status open_series(fob_common *f, const char *case_dir, const char *s
     snprintf(f->path, sizeof f->path, "%s/%s.dat", dir, base);
     struct stat sb;
     if (stat(f->path, &sb) == 0)
-        snprintf(f->path, sizeof f->path, "%s/%s_%s.dat", dir, base, start_time);
+        snprintf(f->path, sizeof f->path, "%s/%s_%s.dat", dir, base, f->suffix[0] ? f->suffix : start_time);
     f->fp = fopen(f->path, "w");
     if (!f->fp)
         return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot create: %s", f->path, strerror(errno));

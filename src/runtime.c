@@ -151,20 +151,24 @@ void rt_advance(rt_time *t)
 
     decide_write(t);
 
-    switch (t->ctl.stop_at) {
-    case CASE_STOP_NOWRITENOW:
-        t->ctl.end_time = t->value;
-        break;
-    case CASE_STOP_WRITENOW:
-        t->ctl.end_time = t->value;
-        t->write_time = 1;
-        break;
-    case CASE_STOP_NEXTWRITE:
-        if (t->write_time)
+    /* stopAt moves endTime to stop at the next rt_running, unless the time
+     * is already past it (Time::end()) */
+    if (!(t->value > t->ctl.end_time + 0.5 * t->delta_t)) {
+        switch (t->ctl.stop_at) {
+        case CASE_STOP_NOWRITENOW:
             t->ctl.end_time = t->value;
-        break;
-    default:
-        break;
+            break;
+        case CASE_STOP_WRITENOW:
+            t->ctl.end_time = t->value;
+            t->write_time = 1;
+            break;
+        case CASE_STOP_NEXTWRITE:
+            if (t->write_time)
+                t->ctl.end_time = t->value;
+            break;
+        default:
+            break;
+        }
     }
 
     /* A time directory name must tell this time from the previous one: when
@@ -222,6 +226,7 @@ void rt_adjust_delta_t(rt_time *t, double courant_max)
     double max_fact = t->ctl.max_co / (courant_max + RT_SMALL);
     double fact = fmin(fmin(max_fact, 1.0 + 0.1 * max_fact), 1.2);
     t->delta_t = fmin(fact * t->delta_t, max_delta_t(&t->ctl));
+    t->delta_t_changed = 1; /* runTime.setDeltaT */
     adjust_to_write(t);
 }
 
@@ -231,5 +236,27 @@ void rt_set_initial_delta_t(rt_time *t, double courant_max)
         return;
     t->delta_t = fmin(t->ctl.max_co * t->delta_t / courant_max,
                       fmin(t->delta_t, max_delta_t(&t->ctl)));
+    t->delta_t_changed = 1; /* runTime.setDeltaT */
     adjust_to_write(t);
+}
+
+void rt_reread(rt_time *t, const case_control *c)
+{
+    case_control *o = &t->ctl;
+    const case_start_from from = o->start_from;
+    const double start = o->start_time, old_wi = o->write_interval;
+    const int old_tprec = o->time_precision;
+    *o = *c;
+    o->start_from = from;
+    o->start_time = start; /* startTime_: the value the run started from */
+    if (!t->delta_t_changed)
+        t->delta_t = c->delta_t;
+    /* Time::readDict: the writes so far counted in the new interval */
+    if (c->write_interval != old_wi &&
+        (c->write_control == CASE_WRITE_RUNTIME || c->write_control == CASE_WRITE_ADJUSTABLERUNTIME))
+        t->write_index = to_label((double)t->write_index * old_wi / c->write_interval);
+    if (c->stop_at != CASE_STOP_ENDTIME)
+        o->end_time = 1e15;
+    if (c->time_precision != old_tprec)
+        t->precision = c->time_precision > 0 ? c->time_precision : 6;
 }

@@ -157,7 +157,9 @@ ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err);
  * file and line; unknown enumeration words are errors listing the valid ones;
  * startTime, endTime, deltaT, writeInterval, maxCo must be finite, deltaT,
  * writeInterval, maxDeltaT positive, endTime >= startTime (startFrom
- * startTime). */
+ * startTime). endTime is read and checked only for stopAt endTime (as
+ * Time::readDict; otherwise it may be absent, default 1e15). The same
+ * function re-reads the file for runTimeModifiable. */
 ump_status case_read_control(const char *case_dir, case_control *c, ump_err *err);
 /* Read <case>/constant/transportProperties: nu (required), beta, TRef, Pr,
  * Prt (optional), each with or without dimensions; wrong dimensions or
@@ -175,9 +177,26 @@ ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *e
 /* 1 if name can become one path component (a cloud or function-object
  * directory): non-empty, no '/', no "..". */
 int case_name_is_safe(const char *name);
-/* endTime before the start time t0 (directory tname) is an error. */
+/* endTime before the start time t0 (directory tname) is an error (stopAt
+ * endTime only). */
 ump_status case_check_start(const char *case_dir, const case_control *c, const char *tname, double t0,
                             ump_err *err);
+
+/* What tells one version of a file from another without reading it: its
+ * device and inode (an editor that writes a new file and renames it over
+ * the old one), size, and modification and status-change times to the
+ * nanosecond the filesystem keeps. runTimeModifiable compares these, as
+ * OpenFOAM's fileModificationChecking timeStamp compares the mtime. */
+typedef struct case_stamp {
+    unsigned long long dev, ino;
+    long long size;
+    long long mtime_sec, ctime_sec;
+    long mtime_nsec, ctime_nsec;
+} case_stamp;
+/* The stamp of path: 0, or -1 (errno set, *s zeroed) when stat fails. */
+int case_file_stamp(const char *path, case_stamp *s);
+/* 1 when a and b are the same version. */
+int case_stamp_equal(const case_stamp *a, const case_stamp *b);
 
 /* Time directories of a case: names whose text reads fully as a number
  * (plus "0"), sorted by value. *names is an array of *n malloc'd strings;

@@ -70,6 +70,12 @@ typedef struct fob_common {
     long interval;           /* writeControl timeStep: every interval steps */
     FILE *fp;                /* the open time series */
     char path[4400];
+    char suffix[64];         /* suffix of a new series file when one of the
+                                name is there: "" = the start time (at
+                                start-up); a function object made by a
+                                controlDict re-read: that time's name */
+    int continued;           /* made by a re-read, continuing the series of
+                                the same unchanged function object */
     size_t nface;            /* the patch's 2-D boundary faces: */
     ump_idx *face;           /*   [nface] face indices of the 2-D mesh */
     double *area;            /*   [nface] 3-D face areas */
@@ -115,6 +121,18 @@ void fob_free(fob_list *L);
  * face, area, x3). */
 ump_status fob_set_faces(fob_common *c, size_t n, const ump_idx *face, const double *area, const double *x3,
                          ump_err *err);
+
+/* runTimeModifiable, after a re-read of the functions dictionary into nw:
+ * each function object of nw that has a namesake in old of the same type
+ * and the same series header (surfaceFieldValue: patch, operation, fields;
+ * nusseltNumber: patch, length, kappa, T1, T2, gradient) takes over its
+ * open series, which continues in the same file (continued = 1), as
+ * OpenFOAM's functionObjectList::read keeps such an object. The others
+ * start a new series at their first write; an existing file of the name
+ * then gets the suffix _<time_name>, the time of the re-read, as
+ * OpenFOAM's writeFile names a file made mid-run. A series taken over is
+ * no longer old's; fob_free(old) closes the others. */
+void fob_take_over(fob_list *nw, fob_list *old, const char *time_name);
 
 /* Per-face data of a patch for one evaluation. */
 typedef struct fob_faces {

@@ -26,6 +26,8 @@ typedef struct rt_time {
     int precision;         /* current timePrecision (may grow) */
     int write_time;        /* 1 when the current step must be written */
     int precision_raised;  /* set when the last ++ raised precision (for a warning) */
+    int delta_t_changed;   /* Time::deltaTchanged_: adjustTimeStep has set
+                              delta_t, so a re-read keeps it (rt_reread) */
     double cpu_start;      /* clock() at rt_init, seconds (writeControl cpuTime) */
     double wall_start;     /* time() at rt_init (writeControl clockTime) */
     char name[64];         /* time name of value */
@@ -56,5 +58,23 @@ void rt_adjust_delta_t(rt_time *t, double courant_max);
  * at index 0 and Courant > 1e-15: delta_t = min(maxCo*delta_t/Co,
  * delta_t, maxDeltaT)), then the adjustableRunTime adjustment. */
 void rt_set_initial_delta_t(rt_time *t, double courant_max);
+
+/* runTimeModifiable: apply a re-read system/controlDict c (already
+ * validated by case_read_control) to the running time, as OpenFOAM's
+ * Time::readDict does between two steps:
+ *   deltaT       taken unless adjustTimeStep has set delta_t
+ *                (delta_t_changed; Time::deltaTchanged_);
+ *   writeControl, writeInterval: taken; with runTime/adjustableRunTime a
+ *                new interval rescales the count of writes so far,
+ *                write_index = label(write_index * old / new), as v1912;
+ *   stopAt, endTime: endTime for stopAt endTime, else 1e15 (GREAT);
+ *   timeFormat, timePrecision: taken when they differ from the previous
+ *                read (an unchanged timePrecision keeps a precision raised
+ *                to tell time names apart);
+ *   the rest (purgeWrite, write format, adjustTimeStep, maxCo,
+ *                maxDeltaT, runTimeModifiable): taken.
+ * startFrom and startTime are not re-read (Time's startTime_ is fixed).
+ * The next rt_running/rt_advance use the new settings. */
+void rt_reread(rt_time *t, const case_control *c);
 
 #endif

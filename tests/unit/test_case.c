@@ -15,6 +15,7 @@
 #include "umppm/solver.h"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 static const char *HDR = "FoamFile { version 2.0; format ascii; class dictionary; object x; }\n";
 
@@ -81,6 +82,63 @@ static void test_control_defaults(void **state)
     write2(d, "system/controlDict", HDR, "startTime 0; endTime 1; deltaT -1; writeInterval 1;\n");
     assert_int_equal(case_read_control(d, &c, &err), UMP_ERR_INPUT);
     assert_non_null(strstr(err.msg, "positive"));
+    tu_rmtree(d);
+}
+
+/* stopAt other than endTime: endTime is not read (Time::readDict), so it
+ * may be absent or not a number; the file stamp tells versions apart. */
+static void test_control_stop_at_and_stamp(void **state)
+{
+    (void)state;
+    char d[64], path[128];
+    tu_tmpdir(d, sizeof d);
+    mk(d, "system");
+    snprintf(path, sizeof path, "%s/system/controlDict", d);
+    case_control c;
+    ump_err err;
+    write2(d, "system/controlDict", HDR, "startTime 0; stopAt writeNow; deltaT 0.1; writeInterval 1;\n");
+    assert_int_equal(case_read_control(d, &c, &err), UMP_OK);
+    assert_int_equal(c.stop_at, CASE_STOP_WRITENOW);
+    write2(d, "system/controlDict", HDR, "startTime 0; stopAt nextWrite; endTime nan; deltaT 0.1; writeInterval 1;\n");
+    assert_int_equal(case_read_control(d, &c, &err), UMP_OK);
+    assert_int_equal(case_check_start(d, &c, "2", 2.0, &err), UMP_OK); /* endTime unused */
+    write2(d, "system/controlDict", HDR, "startTime 0; stopAt endTime; deltaT 0.1; writeInterval 1;\n");
+    assert_int_not_equal(case_read_control(d, &c, &err), UMP_OK);
+    assert_non_null(strstr(err.msg, "endTime"));
+    write2(d, "system/controlDict", HDR, "startTime 0; endTime 1; stopAt foo; deltaT 0.1; writeInterval 1;\n");
+    assert_int_equal(case_read_control(d, &c, &err), UMP_ERR_INPUT);
+    assert_non_null(strstr(err.msg, "stopAt 'foo' is not one of: endTime writeNow noWriteNow nextWrite"));
+
+    case_stamp a, b, e;
+    assert_int_equal(case_file_stamp(path, &a), 0);
+    assert_int_equal(case_file_stamp(path, &b), 0);
+    assert_true(case_stamp_equal(&a, &b));
+    /* a new file renamed over it (what editors and sed -i do), even of the
+     * same size and within the same clock tick, is another version */
+    char other[160];
+    snprintf(other, sizeof other, "%s/system/controlDict.new", d);
+    FILE *fp = fopen(path, "rb");
+    assert_non_null(fp);
+    char text[1024];
+    size_t n = fread(text, 1, sizeof text, fp);
+    fclose(fp);
+    fp = fopen(other, "wb");
+    assert_non_null(fp);
+    fwrite(text, 1, n, fp);
+    fclose(fp);
+    assert_int_equal(rename(other, path), 0);
+    assert_int_equal(case_file_stamp(path, &b), 0);
+    assert_false(case_stamp_equal(&a, &b));
+    assert_int_equal(a.size, b.size);
+    /* so is an append */
+    fp = fopen(path, "ab");
+    assert_non_null(fp);
+    fputs("// edited\n", fp);
+    fclose(fp);
+    assert_int_equal(case_file_stamp(path, &e), 0);
+    assert_false(case_stamp_equal(&b, &e));
+    assert_int_equal(unlink(path), 0);
+    assert_int_equal(case_file_stamp(path, &e), -1);
     tu_rmtree(d);
 }
 
@@ -784,6 +842,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_control_defaults),
+        cmocka_unit_test(test_control_stop_at_and_stamp),
         cmocka_unit_test(test_transport_and_solution),
         cmocka_unit_test(test_times),
         cmocka_unit_test(test_refusals),

@@ -151,6 +151,59 @@ static void test_append(void **state)
     tu_rmtree(dir);
 }
 
+/* runTimeModifiable: after a re-read, an unchanged function object
+ * continues its series in the same file; a changed or new one starts its
+ * own, suffixed with the time of the re-read when the name is taken. */
+static void test_take_over(void **state)
+{
+    (void)state;
+    char dir[64], path[1024];
+    tu_tmpdir(dir, sizeof dir);
+    write_control(dir, "a { type surfaceFieldValue; regionType patch; name inlet; operation sum; fields (p); }\n"
+                       "b { type surfaceFieldValue; regionType patch; name inlet; operation sum; fields (p); }\n");
+    fob_list old, nw;
+    ump_err err;
+    assert_int_equal(fob_read(dir, &old, &err), UMP_OK);
+    const double area[] = {1}, p[] = {2};
+    fob_patch_field v[1] = {{1, 1, area, p}};
+    for (int i = 0; i < 2; i++)
+        assert_int_equal(fob_sfv_append(&old.sf[i], dir, "0", 0.1, v, 6, &err), UMP_OK);
+    FILE *fa = old.sf[0].c.fp;
+    /* a unchanged, b with another operation, c new */
+    snprintf(path, sizeof path, "%s/system", dir);
+    tu_write(path, "controlDict", HEADER "functions\n{\n"
+             "a { type surfaceFieldValue; regionType patch; name inlet; operation sum; fields (p); }\n"
+             "b { type surfaceFieldValue; regionType patch; name inlet; operation max; fields (p); }\n"
+             "c { type surfaceFieldValue; regionType patch; name inlet; operation sum; fields (p); }\n}\n");
+    assert_int_equal(fob_read(dir, &nw, &err), UMP_OK);
+    fob_take_over(&nw, &old, "0.3");
+    assert_true(nw.sf[0].c.continued && nw.sf[0].c.fp == fa && old.sf[0].c.fp == NULL);
+    assert_false(nw.sf[1].c.continued);
+    assert_null(nw.sf[1].c.fp);
+    assert_false(nw.sf[2].c.continued);
+    fob_free(&old); /* closes b's old series, not a's */
+    for (int i = 0; i < 3; i++)
+        assert_int_equal(fob_sfv_append(&nw.sf[i], dir, "0", 0.35, v, 6, &err), UMP_OK);
+    assert_non_null(strstr(nw.sf[0].c.path, "/a/0/surfaceFieldValue.dat"));
+    assert_non_null(strstr(nw.sf[1].c.path, "/b/0/surfaceFieldValue_0.3.dat"));
+    assert_non_null(strstr(nw.sf[2].c.path, "/c/0/surfaceFieldValue.dat"));
+    fob_free(&nw);
+    /* a's file: one header, both rows */
+    snprintf(path, sizeof path, "%s/postProcessing/a/0/surfaceFieldValue.dat", dir);
+    FILE *fp = fopen(path, "r");
+    assert_non_null(fp);
+    char line[512];
+    int rows = 0, times = 0;
+    while (fgets(line, sizeof line, fp)) {
+        rows += line[0] != '#';
+        times += strstr(line, "# Time") != NULL;
+    }
+    fclose(fp);
+    assert_int_equal(rows, 2);
+    assert_int_equal(times, 1);
+    tu_rmtree(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -158,6 +211,7 @@ int main(void)
         cmocka_unit_test(test_bad_entries),
         cmocka_unit_test(test_operations),
         cmocka_unit_test(test_append),
+        cmocka_unit_test(test_take_over),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -257,6 +257,163 @@ static void test_stop_at(void **state)
     assert_string_equal(t.name, "0.05");
 }
 
+/* Run t to its end; the names and indices of the written times into
+ * names (space-separated) and idx. Returns the number written. */
+static int run_writes(rt_time *t, char *names, size_t len, long *idx, int max)
+{
+    int n = 0;
+    names[0] = '\0';
+    while (rt_running(t)) {
+        rt_advance(t);
+        if (t->write_time && n < max) {
+            idx[n++] = t->index;
+            size_t k = strlen(names);
+            snprintf(names + k, len - k, "%s%s", k ? " " : "", t->name);
+        }
+    }
+    return n;
+}
+
+/* runTimeModifiable: the cavity (deltaT 0.005, endTime 0.1) with
+ * controlDict edited after time 0.03, against icoFoam v1912 runs with the
+ * same edit (tests/integration/editshim.c): the written times and their
+ * uniform/time index. */
+static void test_reread_icofoam(void **state)
+{
+    (void)state;
+    char names[512];
+    long idx[32];
+    rt_time t;
+    /* writeControl runTime 0.01, deltaT -> 0.003: icoFoam wrote 0.039 (9)
+     * 0.051 (13) 0.06 (16) 0.069 (19) 0.081 (23) 0.09 (26) 0.099 (29) */
+    case_control c = ctl_defaults();
+    c.end_time = 0.1;
+    c.delta_t = 0.005;
+    c.write_control = CASE_WRITE_RUNTIME;
+    c.write_interval = 0.01;
+    rt_init(&t, &c, 0, "0");
+    for (int k = 0; k < 6; k++)
+        rt_advance(&t);
+    assert_string_equal(t.name, "0.03");
+    case_control e = c;
+    e.delta_t = 0.003;
+    rt_reread(&t, &e);
+    assert_int_equal(run_writes(&t, names, sizeof names, idx, 32), 7);
+    assert_string_equal(names, "0.039 0.051 0.06 0.069 0.081 0.09 0.099");
+    const long want_rt[] = {9, 13, 16, 19, 23, 26, 29};
+    for (int k = 0; k < 7; k++)
+        assert_int_equal(idx[k], want_rt[k]);
+    assert_true(t.delta_t == 0.003 && t.delta_t0 == 0.003);
+
+    /* writeInterval 0.01 -> 0.025 (runTime): the 3 writes so far count as
+     * label(3 * 0.01 / 0.025) = 1, so icoFoam wrote 0.05 0.075 0.1 */
+    rt_init(&t, &c, 0, "0");
+    for (int k = 0; k < 6; k++)
+        rt_advance(&t);
+    assert_int_equal(t.write_index, 3);
+    e = c;
+    e.write_interval = 0.025;
+    rt_reread(&t, &e);
+    assert_int_equal(t.write_index, 1);
+    assert_int_equal(run_writes(&t, names, sizeof names, idx, 32), 3);
+    assert_string_equal(names, "0.05 0.075 0.1");
+
+    /* writeControl timeStep 2, deltaT -> 0.002: the index keeps counting,
+     * icoFoam wrote 0.034 (8) ... 0.098 (40) */
+    c.write_control = CASE_WRITE_TIMESTEP;
+    c.write_interval = 2;
+    rt_init(&t, &c, 0, "0");
+    for (int k = 0; k < 6; k++)
+        rt_advance(&t);
+    e = c;
+    e.delta_t = 0.002;
+    rt_reread(&t, &e);
+    assert_int_equal(run_writes(&t, names, sizeof names, idx, 32), 17);
+    assert_string_equal(names, "0.034 0.038 0.042 0.046 0.05 0.054 0.058 0.062 0.066 0.07 0.074 0.078 0.082 "
+                               "0.086 0.09 0.094 0.098");
+    assert_int_equal(idx[0], 8);
+    assert_int_equal(idx[16], 40);
+
+    /* stopAt writeNow: the next step is written and is the last (0.035);
+     * noWriteNow: one more step, not written; nextWrite: to 0.04 */
+    const case_stop_at stops[] = {CASE_STOP_WRITENOW, CASE_STOP_NOWRITENOW, CASE_STOP_NEXTWRITE};
+    const char *last[] = {"0.035", "0.035", "0.04"};
+    const int nwrite[] = {1, 0, 1};
+    for (int s = 0; s < 3; s++) {
+        rt_init(&t, &c, 0, "0");
+        for (int k = 0; k < 6; k++)
+            rt_advance(&t);
+        e = c;
+        e.stop_at = stops[s];
+        e.end_time = 0.02; /* not read for these stopAt */
+        rt_reread(&t, &e);
+        assert_true(rt_running(&t));
+        assert_int_equal(run_writes(&t, names, sizeof names, idx, 32), nwrite[s]);
+        assert_string_equal(t.name, last[s]);
+    }
+
+    /* endTime before the current time: the run ends at once, as icoFoam */
+    rt_init(&t, &c, 0, "0");
+    for (int k = 0; k < 6; k++)
+        rt_advance(&t);
+    e = c;
+    e.end_time = 0.01;
+    rt_reread(&t, &e);
+    assert_false(rt_running(&t));
+    /* and back to stopAt endTime with a later endTime */
+    e.end_time = 0.05;
+    rt_reread(&t, &e);
+    assert_int_equal(run_writes(&t, names, sizeof names, idx, 32), 2);
+    assert_string_equal(names, "0.04 0.05");
+    assert_string_equal(t.name, "0.05");
+}
+
+/* A deltaT set by adjustTimeStep is kept by a re-read (Time::deltaTchanged_),
+ * and so is a timePrecision raised to tell names apart when timePrecision
+ * itself is unchanged; the start time stays the one the run started from. */
+static void test_reread_kept(void **state)
+{
+    (void)state;
+    case_control c = ctl_defaults();
+    c.end_time = 1;
+    c.delta_t = 0.01;
+    c.write_control = CASE_WRITE_RUNTIME;
+    c.write_interval = 0.1;
+    c.adjust_time_step = 1;
+    c.max_co = 0.5;
+    rt_time t;
+    rt_init(&t, &c, 0.2, "0.2");
+    rt_adjust_delta_t(&t, 1.0); /* Co 1 -> deltaT halved */
+    assert_true(t.delta_t_changed);
+    double dt = t.delta_t;
+    assert_true(dt < 0.01);
+    case_control e = c;
+    e.delta_t = 0.05;
+    e.start_time = 0;
+    e.adjust_time_step = 0;
+    rt_reread(&t, &e);
+    assert_true(t.delta_t == dt);
+    assert_true(t.ctl.start_time == 0.2);
+    assert_false(t.ctl.adjust_time_step);
+
+    c = ctl_defaults();
+    c.end_time = 1;
+    c.delta_t = 0.01;
+    rt_init(&t, &c, 0, "0");
+    assert_false(t.delta_t_changed);
+    e = c;
+    e.delta_t = 0.02;
+    rt_reread(&t, &e);
+    assert_true(t.delta_t == 0.02);
+
+    t.precision = 9; /* as raised by rt_advance */
+    rt_reread(&t, &e);
+    assert_int_equal(t.precision, 9);
+    e.time_precision = 4;
+    rt_reread(&t, &e);
+    assert_int_equal(t.precision, 4);
+}
+
 /* adjustTimeStep without adjustableRunTime: factor 1.2 at most, maxDeltaT. */
 static void test_adjust_runtime_limits(void **state)
 {
@@ -476,6 +633,8 @@ int main(void)
         cmocka_unit_test(test_init_precision),
         cmocka_unit_test(test_runtime_writes),
         cmocka_unit_test(test_stop_at),
+        cmocka_unit_test(test_reread_icofoam),
+        cmocka_unit_test(test_reread_kept),
         cmocka_unit_test(test_adjust_runtime_limits),
         cmocka_unit_test(test_adjustable_pimple_1),
         cmocka_unit_test(test_adjustable_pimple_2),
