@@ -21,6 +21,7 @@
  */
 #define _GNU_SOURCE
 #include <dlfcn.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -77,9 +78,13 @@ static int is_time_dir(const char *path, const char *t)
 
 typedef int (*mkdir_fn)(const char *, mode_t);
 
+/* umppmFoam writes a time's fields and cloud from two threads: one lock */
+static pthread_mutex_t lk = PTHREAD_MUTEX_INITIALIZER;
+
 int mkdir(const char *path, mode_t mode)
 {
     static mkdir_fn real_mkdir;
+    pthread_mutex_lock(&lk);
     if (!real_mkdir) {
         void *p = dlsym(RTLD_NEXT, "mkdir");
         if (!p)
@@ -92,5 +97,6 @@ int mkdir(const char *path, mode_t mode)
             if (rename(edits[i].src, target) != 0)
                 die("editshim: rename of the prepared file over the target failed\n");
         }
+    pthread_mutex_unlock(&lk);
     return real_mkdir(path, mode);
 }
