@@ -57,6 +57,9 @@ typedef struct sol_settings {
     double beta, t_ref;      /* expansion coefficient [1/K], TRef [K] */
     double kappa;            /* thermal diffusivity nu/Pr [m^2/s] */
     int sort_interval;       /* re-sort particles by cell every N steps (default 1; 0 never) */
+    double t_start;          /* start time: boundary conditions that are functions
+                                of time and have no `value` start at their value
+                                at t_start (default 0) */
 } sol_settings;
 
 void sol_default_settings(sol_settings *s);
@@ -112,6 +115,13 @@ ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y,
                              size_t *dropped, ump_err *err);
 /* Set the cell pressure (restart) before the first step. */
 void sol_set_pressure(sol *S, const double *p);
+
+/* The new time t of the coming step: evaluates the boundary conditions that
+ * are functions of time (uniformFixedValue of U or p, flowRateInletVelocity),
+ * as OpenFOAM's updateCoeffs does at the time of the step. Call it before
+ * each sol_step (after advancing the time); without it they keep their
+ * start values. */
+void sol_set_time(sol *S, double t);
 
 /* Advance one step of size dt. */
 ump_status sol_step(sol *S, double dt, sol_stats *st, ump_err *err);

@@ -1,0 +1,298 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# test_solver_bcs.sh -- the boundary conditions of issue 15 item 4, each in
+# a small blockMesh case run by umppmFoam and by icoFoam on the same mesh
+# and fixed deltaT (nu = 0.1; umppmFoam with one OpenMP thread: on this
+# shared 2-core machine two spinning threads cost 10-40x, and
+# test_threads.sh covers threads). Figures measured 2026-12-03 are in
+# brackets; every bound fails for a wrong condition.
+#
+#   flowRate  half channel [0,4] x [0,0.5] (40 x 8, symmetryPlane at
+#             y = 0.5), inlet flowRateInletVelocity with volumetricFlowRate
+#             table ((0 0) (0.5 0.05)) (a ramp, then clamped), outlet p = 0,
+#             t = 6: inlet face U = Q/A = 0.05/(0.5 x 0.1) = 1 exactly;
+#             outflow = 0.05 (sum of the outlet phi); u against the
+#             Poiseuille profile 6y(1-y) for x >= 1.55; U against icoFoam.
+#   slip      channel [0,4] x [0,1] (40 x 10) with slip walls, fixedValue
+#             inlet (1 0 0), outlet p = 0, from rest, t = 1: plug flow
+#             u = 1, v = 0, p = 0 (both solvers).
+#   lidTable, lidSine   unit cavity (20 x 20) whose lid is uniformFixedValue,
+#             a table ((0 (0 0 0)) (0.5 (1 0 0))) or a sine (amplitude 1,
+#             frequency 0.25, scale (1 0 0), level (0 0 0) in
+#             uniformValueCoeffs), side walls noSlip, bottom slip, t = 1:
+#             the lid face values written at t = 0.25 and 1 equal the
+#             Function1 there; U against icoFoam.
+#   pTable    half channel driven by the inlet p = uniformFixedValue table
+#             ((0 0) (1 1.2)) (U zeroGradient), outlet p = 0, t = 6: the
+#             written inlet p; flow rate against the Poiseuille value
+#             1.2 H^2 / (12 nu L) x H/2 x depth = 0.0125 and icoFoam's.
+#   outletInlet half channel, p = 1.2 / 0: inlet U outletInlet (inflow:
+#             zeroGradient), outlet U outletInlet with outletValue the
+#             Poiseuille profile 1.5 y (1 - y) (outflow: fixed), t = 6:
+#             outlet face U = outletValue, flow rate against 0.0125 and
+#             icoFoam's, U against icoFoam.
+#   totalPressure half channel, inlet totalPressure p0 = 1.2 and outlet
+#             p0 = 0, both pressureInletOutletVelocity, t = 6: the inlet
+#             face p = p0 - |U_f|^2/2 of the written U; flow rate against
+#             icoFoam's.
+# Needs UMPPMFOAM and TOOLDIR (foamCompare).
+set -eu -o pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+[ -n "${UMPPMFOAM:-}" ] && [ -x "$UMPPMFOAM" ] || { echo "FAIL: UMPPMFOAM not set" >&2; exit 2; }
+[ -n "${TOOLDIR:-}" ] && [ -x "$TOOLDIR/foamCompare" ] || { echo "FAIL: TOOLDIR not set" >&2; exit 2; }
+. "$here/lib.sh"
+of_env
+work=$(mktemp -d "${TMPDIR:-/tmp}/umppm-bcs.XXXXXX")
+fail=0
+
+# internal values of an ascii field, one line per cell (vector: 3 columns)
+values() {
+    awk '/^internalField/ { s = 1; next } s == 1 && /^\(/ { s = 2; next } s == 2 && /^\)/ { exit }
+         s == 2 { gsub(/[()]/, ""); print }' "$1"
+}
+# patch_values FILE PATCH [N]: the `value` entries of PATCH, one face per
+# line, vectors as "x y z" (a uniform value is repeated N times, default 1;
+# lists inline or one entry per line, as both writers do)
+patch_values() {
+    awk -v p="$2" -v n="${3:-1}" '
+        $1 == p && !s { s = 1; next }
+        s == 1 && /^    }/ { exit }
+        s == 1 && $1 == "value" { v = 1; t = "" }
+        v == 1 { t = t " " $0; if ($0 ~ /;[[:space:]]*$/) {
+            sub(/^[[:space:]]*value[[:space:]]*/, "", t); sub(/;[[:space:]]*$/, "", t)
+            if (t ~ /^uniform/) { sub(/^uniform */, "", t); gsub(/[()]/, "", t); for (i = 0; i < n; i++) print t; exit }
+            sub(/^nonuniform *List<[a-z]*> *[0-9]* *\(/, "", t); sub(/\)[[:space:]]*$/, "", t)
+            vec = t ~ /\(/
+            if (vec) { gsub(/\)[[:space:]]*\(/, "\n", t); gsub(/[()]/, "", t); print t }
+            else { m = split(t, a, /[[:space:]]+/); for (i = 1; i <= m; i++) if (a[i] != "") print a[i] }
+            exit } }' "$1" | sed 's/^[[:space:]]*//'
+}
+# max_dev EXPECTED: the largest |$1 - EXPECTED| of the lines on stdin
+max_dev() {
+    awk -v x="$1" '{ e = $1 - x; if (e < 0) e = -e; if (e > m) m = e } END { print (NR ? m + 0 : "none") }'
+}
+# patch_flux PHI PATCH: the sum of a patch's phi (the flux out through it)
+patch_flux() {
+    patch_values "$1" "$2" | awk '{ s += $1 } END { printf "%.12g\n", NR ? s : "none" }'
+}
+
+# make_case DIR KIND: KIND channel (L 4, H = 1, 40 x 10, walls top and
+# bottom), half (H = 0.5, 40 x 8, symmetryPlane at the top) or cavity (unit,
+# 20 x 20: patches lid, walls, bottom); then the 0/U and 0/p boundary
+# entries from the variables U_in U_out U_wall P_in P_out P_wall (cavity:
+# U_lid U_walls U_bottom) and the times END DT WRITE.
+make_case() {
+    local c=$1 kind=$2
+    mkdir -p "$c/system" "$c/constant" "$c/0"
+    case $kind in
+    channel|half)
+        local L=${CH_L:-2} NX=${CH_NX:-20} h=1 ny=10 top="top { type wall; faces ((3 7 6 2)); }"
+        if [ "$kind" = half ]; then h=0.5 ny=8 top="top { type symmetryPlane; faces ((3 7 6 2)); }"; fi
+        cat > "$c/system/blockMeshDict" <<EOD
+FoamFile { version 2.0; format ascii; class dictionary; object blockMeshDict; }
+vertices ((0 0 0) ($L 0 0) ($L $h 0) (0 $h 0) (0 0 0.1) ($L 0 0.1) ($L $h 0.1) (0 $h 0.1));
+blocks (hex (0 1 2 3 4 5 6 7) ($NX $ny 1) simpleGrading (1 1 1));
+boundary
+(
+    inlet { type patch; faces ((0 4 7 3)); }
+    outlet { type patch; faces ((2 6 5 1)); }
+    bottom { type wall; faces ((1 5 4 0)); }
+    $top
+    frontAndBack { type empty; faces ((0 3 2 1) (4 5 6 7)); }
+);
+EOD
+        local tp="${U_top:-$U_wall}" pp="${P_top:-$P_wall}"
+        if [ "$kind" = half ]; then tp="type symmetryPlane;" pp="type symmetryPlane;"; fi
+        local ub="inlet { $U_in } outlet { $U_out } bottom { $U_wall } top { $tp }"
+        local pb="inlet { $P_in } outlet { $P_out } bottom { $P_wall } top { $pp }"
+        ;;
+    cavity)
+        cat > "$c/system/blockMeshDict" <<'EOD'
+FoamFile { version 2.0; format ascii; class dictionary; object blockMeshDict; }
+vertices ((0 0 0) (1 0 0) (1 1 0) (0 1 0) (0 0 0.1) (1 0 0.1) (1 1 0.1) (0 1 0.1));
+blocks (hex (0 1 2 3 4 5 6 7) (20 20 1) simpleGrading (1 1 1));
+boundary
+(
+    lid { type wall; faces ((3 7 6 2)); }
+    walls { type wall; faces ((0 4 7 3) (2 6 5 1)); }
+    bottom { type wall; faces ((1 5 4 0)); }
+    frontAndBack { type empty; faces ((0 3 2 1) (4 5 6 7)); }
+);
+EOD
+        local ub="lid { $U_lid } walls { type noSlip; } bottom { $U_bottom }"
+        local pb="lid { type zeroGradient; } walls { type zeroGradient; } bottom { type zeroGradient; }"
+        ;;
+    esac
+    cat > "$c/system/controlDict" <<EOD
+FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }
+application icoFoam; startFrom startTime; startTime 0; stopAt endTime; endTime $END;
+deltaT $DT; writeControl runTime; writeInterval $WRITE; writeFormat ascii; writePrecision 12;
+EOD
+    cat > "$c/system/fvSchemes" <<'EOD'
+FoamFile { version 2.0; format ascii; class dictionary; object fvSchemes; }
+ddtSchemes { default Euler; }
+gradSchemes { default Gauss linear; }
+divSchemes { default none; div(phi,U) Gauss linear; }
+laplacianSchemes { default Gauss linear corrected; }
+interpolationSchemes { default linear; }
+snGradSchemes { default corrected; }
+EOD
+    cat > "$c/system/fvSolution" <<'EOD'
+FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }
+solvers
+{
+    p { solver PCG; preconditioner DIC; tolerance 1e-10; relTol 0; }
+    pFinal { $p; }
+    U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-10; relTol 0; }
+}
+PISO { nCorrectors 2; nNonOrthogonalCorrectors 0; pRefCell 0; pRefValue 0; }
+EOD
+    echo 'FoamFile { version 2.0; format ascii; class dictionary; object transportProperties; } nu [0 2 -1 0 0 0 0] 0.1;' \
+        > "$c/constant/transportProperties"
+    cat > "$c/0/U" <<EOD
+FoamFile { version 2.0; format ascii; class volVectorField; object U; }
+dimensions [0 1 -1 0 0 0 0];
+internalField uniform ${U0:-(0 0 0)};
+boundaryField { $ub frontAndBack { type empty; } }
+EOD
+    cat > "$c/0/p" <<EOD
+FoamFile { version 2.0; format ascii; class volScalarField; object p; }
+dimensions [0 2 -2 0 0 0 0];
+internalField uniform 0;
+boundaryField { $pb frontAndBack { type empty; } }
+EOD
+    run_in "$c" blockMesh blockMesh
+}
+
+# run_both NAME KIND: make the case, run umppmFoam in $work/NAME and icoFoam
+# in $work/NAME/ico (a copy made before the run). Returns non-zero (and
+# sets fail) when a run fails.
+run_both() {
+    local c=$work/$1
+    make_case "$c" "$2" || { fail=1; return 1; }
+    mkdir -p "$c/ico" && cp -r "$c/system" "$c/constant" "$c/0" "$c/ico/"
+    if ! OMP_NUM_THREADS=1 "$UMPPMFOAM" -case "$c" > "$c/log" 2>&1; then
+        echo "FAIL: $1: umppmFoam: $(tail -2 "$c/log")"
+        fail=1
+        return 1
+    fi
+    run_in "$c/ico" icoFoam icoFoam || { fail=1; return 1; }
+}
+# rel L2 of U (or field $4) between umppmFoam and icoFoam at time $3
+vs_ico() {
+    "$TOOLDIR/foamCompare" "$work/$1" "$2" "$work/$1/ico" "$2" "${3:-U}" | awk -v f="${3:-U}" '$1 == f { print $4 }'
+}
+
+# --- flowRateInletVelocity -------------------------------------------------
+END=6 DT=0.005 WRITE=3
+U_in="type flowRateInletVelocity; volumetricFlowRate table ((0 0) (0.5 0.05)); value uniform (0 0 0);"
+U_out="type zeroGradient;" U_wall="type noSlip;"
+P_in="type zeroGradient;" P_out="type fixedValue; value uniform 0;" P_wall="type zeroGradient;"
+if run_both flowRate half; then
+    c=$work/flowRate
+    echo "flowRateInletVelocity:"
+    check_range "inlet face u - Q/A (= 1)" "$(patch_values "$c/6/U" inlet | max_dev 1)" 0 1e-12
+    check_range "outflow (sum outlet phi)" "$(patch_flux "$c/6/phi" outlet)" 0.0499999999 0.0500000001
+    err=$(values "$c/6/U" | awk '{ i = (NR - 1) % 20; j = int((NR - 1) / 20); y = (j + 0.5) / 16
+        if (i >= 10) { e = $1 - 6 * y * (1 - y); if (e < 0) e = -e; if (e > m) m = e } } END { print m }')
+    check_range "max |u - 6y(1-y)| for x >= 1.05" "$err" 0 0.01
+    check_range "icoFoam: outflow" "$(patch_flux "$c/ico/6/phi" outlet)" 0.0499999999 0.0500000001
+    check_range "U vs icoFoam, relative L2" "$(vs_ico flowRate 6)" 0 0.02
+fi
+
+# --- slip ------------------------------------------------------------------
+END=0.5 DT=0.005 WRITE=0.5
+U_in="type fixedValue; value uniform (1 0 0);" U_out="type zeroGradient;" U_wall="type slip;"
+P_in="type zeroGradient;" P_out="type fixedValue; value uniform 0;" P_wall="type zeroGradient;"
+U0="(1 0 0)"
+if run_both slip channel; then
+    c=$work/slip
+    echo "slip:"
+    for s in "" /ico; do
+        d=$(values "$c$s/0.5/U" | awk '{ e = sqrt(($1 - 1)^2 + $2^2); if (e > m) m = e } END { print m + 0 }')
+        check_range "${s:-umppmFoam}: max |U - (1 0 0)|" "$d" 0 1e-9
+        d=$(values "$c$s/0.5/p" | awk '{ e = $1 < 0 ? -$1 : $1; if (e > m) m = e } END { print m + 0 }')
+        check_range "${s:-umppmFoam}: max |p|" "$d" 0 1e-9
+    done
+    if grep -A2 '^    top' "$c/0.5/U" | grep -q 'type *slip;' && ! sed -n '/^    top/,/^    }/p' "$c/0.5/U" | grep -q value
+    then
+        echo "  ok   slip written as OpenFOAM does (type only)"
+    else
+        echo "  FAIL slip written: $(sed -n '/^    top/,/^    }/p' "$c/0.5/U" | tr '\n' ' ')"
+        fail=1
+    fi
+fi
+
+unset U0
+
+# --- uniformFixedValue lid: table and sine ---------------------------------
+END=0.5 DT=0.005 WRITE=0.25
+U_bottom="type slip;"
+for lid in table sine; do
+    if [ $lid = table ]; then
+        U_lid="type uniformFixedValue; uniformValue table ((0 (0 0 0)) (0.5 (1 0 0)));"
+        f() { awk -v t="$1" 'BEGIN { printf "%.12g", t < 0.5 ? 2 * t : 1 }'; }
+    else
+        U_lid="type uniformFixedValue; uniformValue sine; uniformValueCoeffs { amplitude 1; frequency 0.25; scale (1 0 0); level (0 0 0); }"
+        f() { awk -v t="$1" 'BEGIN { printf "%.12g", sin(2 * 3.14159265358979 * 0.25 * t) }'; }
+    fi
+    name=lid$lid
+    if run_both $name cavity; then
+        c=$work/$name
+        echo "uniformFixedValue $lid lid:"
+        for t in 0.25 0.5; do
+            check_range "lid u at t = $t - uniformValue($t) = $(f $t)" "$(patch_values "$c/$t/U" lid | max_dev "$(f $t)")" 0 1e-11
+        done
+        check_range "U vs icoFoam at t = 0.25, relative L2" "$(vs_ico $name 0.25)" 0 0.07
+        check_range "U vs icoFoam at t = 0.5, relative L2" "$(vs_ico $name 0.5)" 0 0.07
+    fi
+done
+
+# --- outletInlet, uniformFixedValue p ----------------------------------------
+END=6 DT=0.005 WRITE=0.5 CH_L=4 CH_NX=40
+prof=$(awk 'BEGIN { printf "nonuniform List<vector> 8("; for (j = 0; j < 8; j++) { y = (j + 0.5) / 16
+    printf "(%.12g 0 0) ", 1.5 * y * (1 - y) } printf ")" }')
+U_in="type outletInlet; outletValue uniform (0 0 0); value uniform (0 0 0);"
+U_out="type outletInlet; outletValue $prof; value uniform (0 0 0);" U_wall="type noSlip;"
+P_in="type uniformFixedValue; uniformValue table ((0 0) (1 1.2));" P_out="type fixedValue; value uniform 0;"
+P_wall="type zeroGradient;"
+if run_both outletInlet half; then
+    c=$work/outletInlet
+    echo "outletInlet, uniformFixedValue p:"
+    d=$(paste <(patch_values "$c/6/U" outlet 8) <(awk 'BEGIN { for (j = 0; j < 8; j++) { y = (j + 0.5) / 16
+        printf "%.12g\n", 1.5 * y * (1 - y) } }') | awk '{ e = $1 - $4; if (e < 0) e = -e; if (e > m) m = e } END { print m + 0 }')
+    check_range "outlet face U - outletValue (outflow: fixed)" "$d" 0 1e-11
+    d=$(paste <(patch_values "$c/6/U" inlet 8) <(values "$c/6/U" | awk '(NR - 1) % 40 == 0') |
+        awk '{ e = sqrt(($1 - $4)^2 + ($2 - $5)^2); if (e > m) m = e } END { print m + 0 }')
+    check_range "inlet face U - owner cell U (inflow: zeroGradient)" "$d" 0 1e-11
+    check_range "inlet p at t = 0.5 - 0.6 (table)" "$(patch_values "$c/0.5/p" inlet | max_dev 0.6)" 0 1e-12
+    check_range "inlet p at t = 6 - 1.2 (table, clamped)" "$(patch_values "$c/6/p" inlet | max_dev 1.2)" 0 1e-12
+    q=$(patch_flux "$c/6/phi" outlet) qi=$(patch_flux "$c/ico/6/phi" outlet)
+    echo "  flow rate: umppmFoam $q, icoFoam $qi, Poiseuille 0.0125"
+    check_range "flow rate / 0.0125" "$(awk -v a="$q" 'BEGIN { print a / 0.0125 }')" 0.98 1.02
+    check_range "flow rate / icoFoam's" "$(awk -v a="$q" -v b="$qi" 'BEGIN { print a / b }')" 0.98 1.02
+    check_range "U vs icoFoam, relative L2" "$(vs_ico outletInlet 6)" 0 0.02
+fi
+
+# --- totalPressure + pressureInletOutletVelocity ---------------------------
+END=6 DT=0.005 WRITE=3 CH_L=4 CH_NX=40
+U_in="type pressureInletOutletVelocity; value uniform (0 0 0);" U_out="$U_in" U_wall="type noSlip;"
+P_in="type totalPressure; p0 uniform 1.2;" P_out="type totalPressure; p0 uniform 0;" P_wall="type zeroGradient;"
+if run_both totalPressure half; then
+    c=$work/totalPressure
+    echo "totalPressure + pressureInletOutletVelocity:"
+    d=$(paste <(patch_values "$c/6/p" inlet 8) <(patch_values "$c/6/U" inlet 8) |
+        awk '{ e = $1 - (1.2 - 0.5 * ($2^2 + $3^2 + $4^2)); if (e < 0) e = -e; if (e > m) m = e } END { print m + 0 }')
+    check_range "inlet p - (p0 - |U|^2/2)" "$d" 0 1e-3
+    check_range "outlet p - p0 (outflow)" "$(patch_values "$c/6/p" outlet 8 | max_dev 0)" 0 1e-12
+    d=$(patch_values "$c/6/U" inlet 8 | awk '{ e = $2 < 0 ? -$2 : $2; if (e > m) m = e } END { print m + 0 }')
+    check_range "inlet face v (inflow: normal velocity only)" "$d" 0 1e-14
+    q=$(patch_flux "$c/6/phi" outlet) qi=$(patch_flux "$c/ico/6/phi" outlet)
+    echo "  flow rate: umppmFoam $q, icoFoam $qi"
+    check_range "flow rate / icoFoam's" "$(awk -v a="$q" -v b="$qi" 'BEGIN { print a / b }')" 0.97 1.03
+    check_range "U vs icoFoam, relative L2" "$(vs_ico totalPressure 6)" 0 0.03
+fi
+
+[ "$fail" = 0 ] || { echo "work dir kept: $work"; exit 1; }
+rm -rf "$work"
+echo "PASS"
