@@ -2,39 +2,53 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # test_solver_bcs.sh -- the boundary conditions of issue 15 item 4, each in
 # a small blockMesh case run by umppmFoam and by icoFoam on the same mesh
-# and fixed deltaT (nu = 0.1; umppmFoam with one OpenMP thread: on this
-# shared 2-core machine two spinning threads cost 10-40x, and
-# test_threads.sh covers threads). Figures measured 2026-12-03 are in
-# brackets; every bound fails for a wrong condition.
+# and fixed deltaT = 0.005 (nu = 0.1; umppmFoam with one OpenMP thread: on
+# a shared 2-core machine two spinning threads cost 10-40x, and
+# test_threads.sh covers threads). Measured 2026-12-03 in brackets; each
+# bound fails for a wrong condition (figures for wrong ones below).
 #
-#   flowRate  half channel [0,4] x [0,0.5] (40 x 8, symmetryPlane at
-#             y = 0.5), inlet flowRateInletVelocity with volumetricFlowRate
+#   flowRate  half channel [0,2] x [0,0.5] (20 x 8, symmetryPlane at
+#             y = 0.5), inlet flowRateInletVelocity, volumetricFlowRate
 #             table ((0 0) (0.5 0.05)) (a ramp, then clamped), outlet p = 0,
-#             t = 6: inlet face U = Q/A = 0.05/(0.5 x 0.1) = 1 exactly;
-#             outflow = 0.05 (sum of the outlet phi); u against the
-#             Poiseuille profile 6y(1-y) for x >= 1.55; U against icoFoam.
-#   slip      channel [0,4] x [0,1] (40 x 10) with slip walls, fixedValue
-#             inlet (1 0 0), outlet p = 0, from rest, t = 1: plug flow
-#             u = 1, v = 0, p = 0 (both solvers).
-#   lidTable, lidSine   unit cavity (20 x 20) whose lid is uniformFixedValue,
-#             a table ((0 (0 0 0)) (0.5 (1 0 0))) or a sine (amplitude 1,
-#             frequency 0.25, scale (1 0 0), level (0 0 0) in
-#             uniformValueCoeffs), side walls noSlip, bottom slip, t = 1:
-#             the lid face values written at t = 0.25 and 1 equal the
-#             Function1 there; U against icoFoam.
-#   pTable    half channel driven by the inlet p = uniformFixedValue table
-#             ((0 0) (1 1.2)) (U zeroGradient), outlet p = 0, t = 6: the
-#             written inlet p; flow rate against the Poiseuille value
-#             1.2 H^2 / (12 nu L) x H/2 x depth = 0.0125 and icoFoam's.
-#   outletInlet half channel, p = 1.2 / 0: inlet U outletInlet (inflow:
-#             zeroGradient), outlet U outletInlet with outletValue the
-#             Poiseuille profile 1.5 y (1 - y) (outflow: fixed), t = 6:
-#             outlet face U = outletValue, flow rate against 0.0125 and
-#             icoFoam's, U against icoFoam.
-#   totalPressure half channel, inlet totalPressure p0 = 1.2 and outlet
-#             p0 = 0, both pressureInletOutletVelocity, t = 6: the inlet
-#             face p = p0 - |U_f|^2/2 of the written U; flow rate against
-#             icoFoam's.
+#             t = 6: inlet face u = Q/A = 0.05/(0.5 x 0.1) = 1 [exact];
+#             outflow (sum of the outlet phi) 0.05 [exact, both solvers];
+#             max |u - 6y(1-y)| for x >= 1.05 < 0.01 [0.0067]; U against
+#             icoFoam, relative L2 < 0.025 [0.019].
+#   slip      channel [0,2] x [0,1] (20 x 10), slip walls, fixedValue inlet
+#             (1 0 0), outlet p = 0, from U = (1 0 0), t = 0.5: the plug flow
+#             stays, |U - (1 0 0)| and |p| < 1e-9 [1e-15, 4e-14; icoFoam the
+#             same]: a wall with any shear would grow boundary layers at once;
+#             slip is written as v1912 writes it (type only).
+#   lidTable, lidSine   unit cavity (20 x 20), lid uniformFixedValue: table
+#             ((0 (0 0 0)) (0.5 (1 0 0))) or sine (amplitude 1, frequency
+#             0.25, scale (1 0 0), level (0 0 0) in uniformValueCoeffs);
+#             side walls noSlip, bottom slip, t = 0.5: the lid face value
+#             written at t = 0.25 and 0.5 equals the Function1 there [exact;
+#             a lag of one step would be 0.01 off]; U against icoFoam at both
+#             times, relative L2 < 0.07 [0.052..0.058; the cavity's own
+#             difference, cf. test_solver_cavity.sh; a lid stuck at 0.45
+#             scores 0.19 at t = 0.25, the sine lid against the table lid 0.30].
+#   outletInlet half channel [0,4] x [0,0.5] (40 x 8), inlet p
+#             uniformFixedValue table ((0 0) (1 1.2)) with U outletInlet
+#             (inflow: zeroGradient), outlet p = 0 with U outletInlet whose
+#             outletValue is the Poiseuille profile 1.5 y (1 - y) (outflow:
+#             fixed), t = 6: outlet face U = outletValue and inlet face U =
+#             the owner cell's [exact]; inlet p = 0.6 at t = 0.5 and 1.2 at
+#             t = 6 [exact]; flow rate within 2 % of the Poiseuille 1.2 H^2 /
+#             (12 nu L) (H/2) depth = 0.0125 [+1.5 %] and of icoFoam's
+#             [+0.8 %]; U against icoFoam < 0.02 [0.0084].
+#   totalPressure half channel 40 x 8, inlet totalPressure p0 = 1.2 and
+#             outlet p0 = 0, both pressureInletOutletVelocity, t = 6: inlet
+#             face p = p0 - |U_f|^2/2 of the written U to 1e-3 [4.6e-5: the
+#             p is set from the previous step's velocity, and particle
+#             management makes the cell velocities flicker by ~1e-4];
+#             outlet p = p0 (outflow) and inlet face v = 0 (inflow: normal
+#             velocity only) [exact]; flow rate within 4 % of icoFoam's
+#             [+3.4 %] and U relative L2 < 0.04 [0.034]; p fixed at p0 on the
+#             inlet (no -|U|^2/2) gives +7.4 % and 0.075.
+# The open-boundary flow rates carry a first-order-in-dt end effect of the
+# method (README "Boundary conditions"): the totalPressure channel is
+# +3.4 % at dt = 0.005 and +0.7 % at dt = 0.0025, +6.4 % with L = 2.
 # Needs UMPPMFOAM and TOOLDIR (foamCompare).
 set -eu -o pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -76,11 +90,12 @@ patch_flux() {
     patch_values "$1" "$2" | awk '{ s += $1 } END { printf "%.12g\n", NR ? s : "none" }'
 }
 
-# make_case DIR KIND: KIND channel (L 4, H = 1, 40 x 10, walls top and
-# bottom), half (H = 0.5, 40 x 8, symmetryPlane at the top) or cavity (unit,
-# 20 x 20: patches lid, walls, bottom); then the 0/U and 0/p boundary
-# entries from the variables U_in U_out U_wall P_in P_out P_wall (cavity:
-# U_lid U_walls U_bottom) and the times END DT WRITE.
+# make_case DIR KIND: KIND channel (length CH_L, default 2, with CH_NX
+# cells, default 20; H = 1, 10 cells, walls bottom and top), half (H = 0.5,
+# 8 cells, symmetryPlane at the top) or cavity (unit, 20 x 20: patches lid,
+# walls, bottom); then the 0/U and 0/p boundary entries from the variables
+# U_in U_out U_wall P_in P_out P_wall (cavity: U_lid U_bottom), the initial
+# U0 (default (0 0 0)) and the times END DT WRITE.
 make_case() {
     local c=$1 kind=$2
     mkdir -p "$c/system" "$c/constant" "$c/0"
@@ -197,7 +212,7 @@ if run_both flowRate half; then
         if (i >= 10) { e = $1 - 6 * y * (1 - y); if (e < 0) e = -e; if (e > m) m = e } } END { print m }')
     check_range "max |u - 6y(1-y)| for x >= 1.05" "$err" 0 0.01
     check_range "icoFoam: outflow" "$(patch_flux "$c/ico/6/phi" outlet)" 0.0499999999 0.0500000001
-    check_range "U vs icoFoam, relative L2" "$(vs_ico flowRate 6)" 0 0.02
+    check_range "U vs icoFoam, relative L2" "$(vs_ico flowRate 6)" 0 0.025
 fi
 
 # --- slip ------------------------------------------------------------------
@@ -289,8 +304,8 @@ if run_both totalPressure half; then
     check_range "inlet face v (inflow: normal velocity only)" "$d" 0 1e-14
     q=$(patch_flux "$c/6/phi" outlet) qi=$(patch_flux "$c/ico/6/phi" outlet)
     echo "  flow rate: umppmFoam $q, icoFoam $qi"
-    check_range "flow rate / icoFoam's" "$(awk -v a="$q" -v b="$qi" 'BEGIN { print a / b }')" 0.97 1.03
-    check_range "U vs icoFoam, relative L2" "$(vs_ico totalPressure 6)" 0 0.03
+    check_range "flow rate / icoFoam's" "$(awk -v a="$q" -v b="$qi" 'BEGIN { print a / b }')" 0.96 1.04
+    check_range "U vs icoFoam, relative L2" "$(vs_ico totalPressure 6)" 0 0.04
 fi
 
 [ "$fail" = 0 ] || { echo "work dir kept: $work"; exit 1; }
