@@ -728,7 +728,13 @@ static void put_phi(sink *s, const field_job *j)
         int empty = pp->kind == PMESH_EMPTY;
         sink_printf(s, "    %s\n    {\n", pp->name);
         put_key(s, 8, "type");
-        sink_puts(s, empty ? "empty;\n" : pp->kind == PMESH_CYCLIC ? "cyclic;\n" : "calculated;\n");
+        /* constraint patches carry their own type, as OpenFOAM's phi (a
+         * "calculated" symmetryPlane patch is refused when read back) */
+        sink_puts(s, empty                                 ? "empty;\n"
+                     : pp->kind == PMESH_CYCLIC         ? "cyclic;\n"
+                     : pp->kind == PMESH_SYMMETRYPLANE  ? "symmetryPlane;\n"
+                     : pp->kind == PMESH_SYMMETRY       ? "symmetry;\n"
+                                                        : "calculated;\n");
         put_key(s, 8, "value");
         put_field_value(s, phi + (empty ? 0 : pp->start), empty ? 0 : pp->n, 1, j->binary, j->prec);
         sink_puts(s, "    }\n");
