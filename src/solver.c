@@ -96,7 +96,7 @@
 #include <omp.h>
 #endif
 
-/* Velocity condition of a boundary face (set_boundary_velocity). */
+/* Velocity condition of a boundary face (boundary_velocity). */
 enum { BU_FIXED = 0, BU_OUTLET, BU_INLETOUTLET, BU_SYMMETRY, BU_OUTLETINLET, BU_PRESSUREINLETOUTLET };
 enum { BT_FIXED = 0, BT_ZEROGRADIENT, BT_INLETOUTLET };
 
