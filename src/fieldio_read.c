@@ -301,6 +301,11 @@ static ump_status check_bc_keys(const foam_dict *d, fld_bc_type t, const fld_fie
                             g->file, g->line, patch, gamma);
         return UMP_OK;
     }
+    case FLD_BC_UNIFORMFIXEDVALUE:
+        /* v1912's PatchFunction1 rotates uniformValue by a coordinateSystem
+         * of the patch dictionary (checked with its icoFoam) */
+        return key_refused(d, "coordinateSystem", type, patch,
+                           "it rotates uniformValue; give the value in the global axes", err);
     case FLD_BC_FLOWRATEINLETVELOCITY:
         UMP_CALL(key_refused(d, "massFlowRate", type, patch,
                              "it needs the density rho; give volumetricFlowRate instead", err));

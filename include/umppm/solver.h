@@ -96,7 +96,14 @@ typedef struct sol sol; /* opaque */
 /* Build the solver: LS gradient and PPE (assembled and factorized once),
  * boundary particles, and one fluid particle per centroid with the cell
  * values of U (and T). U and p give the boundary conditions (types and
- * values); for a buoyant case p is p_rgh (its fixedValue faces become
+ * values; U: fixedValue, noSlip, movingWallVelocity, uniformFixedValue,
+ * flowRateInletVelocity, zeroGradient, inletOutlet, outletInlet,
+ * pressureInletOutletVelocity, symmetryPlane, symmetry, slip, cyclic; p:
+ * fixedValue, uniformFixedValue, totalPressure, zeroGradient,
+ * fixedFluxPressure, symmetryPlane, symmetry, slip, cyclic; others, p
+ * inletOutlet/outletInlet and a face with U and p both fixed are refused
+ * with UMP_ERR_UNSUPPORTED/UMP_ERR_INPUT; U and p must stay alive for the
+ * time-dependent ones, sol_set_time); for a buoyant case p is p_rgh (its fixed faces become
  * pi = p_rgh - beta (T - TRef) gh each step) and T (required then; NULL
  * otherwise) gives the temperature: fixedValue, zeroGradient, symmetry,
  * symmetryPlane or inletOutlet. mesh, U, p and T are borrowed for the

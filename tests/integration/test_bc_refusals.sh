@@ -138,6 +138,9 @@ check f1-table-outOfBounds "table outOfBounds 'error' is not implemented" \
 check f1-nonuniform "'nonuniform' \\(a value per face\\) is not implemented" \
     "type uniformFixedValue; uniformValue nonuniform List<vector> 5((1 0 0) (1 0 0) (1 0 0) (1 0 0) (1 0 0));" \
     "$U_OUT" "$P_IN" "$P_OUT"
+check f1-coordinateSystem "$F: uniformFixedValue: key 'coordinateSystem' is not implemented by umppmFoam \\(it rotates" \
+    "type uniformFixedValue; uniformValue (1 0 0); coordinateSystem { type cartesian; origin (0 0 0); coordinateRotation { type axesRotation; e1 (0 1 0); e3 (0 0 1); } }" \
+    "$U_OUT" "$P_IN" "$P_OUT"
 check f1-p-unknown "$P: uniformFixedValue uniformValue: Function1 type 'csvFile' is not implemented" \
     "$U_OUT" "$U_OUT" "type uniformFixedValue; uniformValue csvFile;" "$P_OUT"
 # flowRateInletVelocity
