@@ -432,11 +432,22 @@ static double speed_scale(const app *a)
         const double *v = U->internal + 3 * (size_t)c;
         u2 = fmax(u2, v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     }
-    for (int p = 0; p < U->npatches; p++)
+    for (int p = 0; p < U->npatches; p++) {
         for (ump_idx i = 0; U->patch[p].value && i < U->patch[p].n; i++) {
             const double *v = U->patch[p].value + 3 * (size_t)i;
             u2 = fmax(u2, v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
         }
+        /* boundary velocities that change in time: their bound over all t
+         * (uniformValue; volumetricFlowRate / patch area) */
+        const fld_patch *fp = &U->patch[p];
+        if (fp->fn && fp->type == FLD_BC_UNIFORMFIXEDVALUE)
+            u2 = fmax(u2, pow(f1_max_abs(fp->fn), 2));
+        if (fp->fn && fp->type == FLD_BC_FLOWRATEINLETVELOCITY) {
+            double area = mesh_patch_area(m, p, NULL);
+            if (area > 0)
+                u2 = fmax(u2, pow(f1_max_abs(fp->fn) / area, 2));
+        }
+    }
     double scale = fmax(sqrt(u2), a->tr.nu / L);
     const fld_field *rng[2] = {P, a->T};
     double dp = 0, dT = 0;
@@ -449,11 +460,22 @@ static double speed_scale(const app *a)
             lo = fmin(lo, f->internal[c]);
             hi = fmax(hi, f->internal[c]);
         }
-        for (int p = 0; p < f->npatches; p++)
-            for (ump_idx i = 0; f->patch[p].value && i < f->patch[p].n; i++) {
-                lo = fmin(lo, f->patch[p].value[i]);
-                hi = fmax(hi, f->patch[p].value[i]);
+        for (int p = 0; p < f->npatches; p++) {
+            const fld_patch *fp = &f->patch[p];
+            for (ump_idx i = 0; fp->value && i < fp->n; i++) {
+                lo = fmin(lo, fp->value[i]);
+                hi = fmax(hi, fp->value[i]);
             }
+            /* totalPressure's p0; a uniformFixedValue's range over all t */
+            for (ump_idx i = 0; fp->type == FLD_BC_TOTALPRESSURE && fp->aux && i < fp->n; i++) {
+                lo = fmin(lo, fp->aux[i]);
+                hi = fmax(hi, fp->aux[i]);
+            }
+            if (fp->fn && fp->type == FLD_BC_UNIFORMFIXEDVALUE && fp->n > 0) {
+                lo = fmin(lo, -f1_max_abs(fp->fn));
+                hi = fmax(hi, f1_max_abs(fp->fn));
+            }
+        }
         double d = hi > lo ? hi - lo : 0;
         if (k == 0)
             dp = d;
@@ -1104,6 +1126,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         (rc = read_start_field(&a, tname, "U", 3, 0, &a.U, err)) != UMP_OK ||
         (rc = settings(&a, &s, err)) != UMP_OK)
         goto done;
+    s.t_start = t0; /* time-dependent boundary conditions without a value start here */
     if (a.fo.ignored[0])
         printf("--> umppmFoam Warning: function objects not run by umppmFoam (ignored): %s\n\n",
                a.fo.ignored);
@@ -1164,6 +1187,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
             printf("deltaT = %g\n", t.delta_t);
         }
         rt_advance(&t);
+        sol_set_time(a.S, t.value); /* time-dependent boundary conditions at the new time */
         if (t.precision_raised)
             printf("--> umppmFoam Warning: increased the timePrecision to %d to distinguish between "
                    "timeNames at time %s\n", t.precision, t.name);

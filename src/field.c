@@ -20,6 +20,12 @@ static const char *const bc_names[FLD_BC_NTYPES] = {
     [FLD_BC_SYMMETRY] = "symmetry",
     [FLD_BC_FIXEDFLUXPRESSURE] = "fixedFluxPressure",
     [FLD_BC_INLETOUTLET] = "inletOutlet",
+    [FLD_BC_SLIP] = "slip",
+    [FLD_BC_UNIFORMFIXEDVALUE] = "uniformFixedValue",
+    [FLD_BC_FLOWRATEINLETVELOCITY] = "flowRateInletVelocity",
+    [FLD_BC_OUTLETINLET] = "outletInlet",
+    [FLD_BC_TOTALPRESSURE] = "totalPressure",
+    [FLD_BC_PRESSUREINLETOUTLETVELOCITY] = "pressureInletOutletVelocity",
 };
 
 const char *fld_bc_name(fld_bc_type t)
@@ -41,14 +47,44 @@ int fld_bc_parse(const char *word)
 
 int fld_bc_is_fixed(fld_bc_type t)
 {
-    return t == FLD_BC_FIXEDVALUE || t == FLD_BC_NOSLIP
-        || t == FLD_BC_MOVINGWALLVELOCITY;
+    return t == FLD_BC_FIXEDVALUE || t == FLD_BC_NOSLIP || t == FLD_BC_MOVINGWALLVELOCITY ||
+           t == FLD_BC_UNIFORMFIXEDVALUE || t == FLD_BC_FLOWRATEINLETVELOCITY || t == FLD_BC_TOTALPRESSURE;
+}
+
+int fld_bc_eval(const fld_patch *p, int ncomp, double t, const double *nrm, double area, double *out)
+{
+    size_t nc = (size_t)ncomp;
+    double v[3] = {0, 0, 0};
+    if (!p->fn)
+        return 0;
+    if (p->type == FLD_BC_UNIFORMFIXEDVALUE) {
+        /* uniformFixedValueFvPatchField::updateCoeffs: uniformValue at the
+         * time of the step */
+        f1_value(p->fn, t, v);
+        for (ump_idx i = 0; i < p->n; i++)
+            memcpy(out + (size_t)i * nc, v, nc * sizeof *out);
+        return 1;
+    }
+    if (p->type == FLD_BC_FLOWRATEINLETVELOCITY && ncomp == 3) {
+        /* flowRateInletVelocityFvPatchVectorField::updateValues, volumetric:
+         * avgU = -Q/gSum(magSf), U = n avgU (n outward: into the domain for
+         * Q > 0) */
+        double q;
+        f1_value(p->fn, t, &q);
+        double avg = -q / area;
+        for (ump_idx i = 0; i < p->n; i++)
+            for (int k = 0; k < 3; k++)
+                out[3 * (size_t)i + (size_t)k] = avg * nrm[3 * (size_t)i + (size_t)k];
+        return 1;
+    }
+    return 0;
 }
 
 static void free_patch(fld_patch *p)
 {
     free(p->value);
     free(p->aux);
+    f1_free(&p->fn);
     for (int i = 0; i < p->nextra; i++) {
         free(p->extra[i].key);
         free(p->extra[i].text);
@@ -165,6 +201,11 @@ ump_status fld_copy(const fld_field *src, fld_field **out, ump_err *err)
         d->value_given = s->value_given;
         d->value = dup_doubles(s->value, nv, &ok);
         d->aux = dup_doubles(s->aux, nv, &ok);
+        if (ok && s->fn) {
+            ump_err e;
+            if (f1_copy(s->fn, &d->fn, &e) != UMP_OK)
+                ok = 0;
+        }
         if (s->nextra > 0) {
             d->extra = ump_alloc_array((size_t)s->nextra, sizeof *d->extra);
             if (!d->extra) {

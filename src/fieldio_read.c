@@ -107,29 +107,237 @@ static ump_status read_values(const foam_token *tok, size_t nt, size_t *pos, siz
     return UMP_OK;
 }
 
-/* Serialise tokens on one line, for keys kept verbatim. */
-static void tokens_to_text(const foam_token *t, size_t nt, char *buf, size_t len)
+/* ---- keys kept verbatim -------------------------------------------------- */
+
+/* A growable string (the text of a kept key, any length). */
+typedef struct sbuf {
+    char *s;
+    size_t n, cap;
+    int failed;
+} sbuf;
+
+static void sb_put(sbuf *b, const char *str, size_t len)
 {
-    size_t k = 0;
-    buf[0] = '\0';
-    for (size_t i = 0; i < nt && k + 1 < len; i++) {
-        char tmp[256];
-        const char *sep = (i == 0) ? "" : " ";
-        switch (t[i].type) {
-        case FOAM_TOK_PUNCT: snprintf(tmp, sizeof tmp, "%c", t[i].v.punct); break;
-        case FOAM_TOK_WORD: snprintf(tmp, sizeof tmp, "%s", t[i].v.str); break;
-        case FOAM_TOK_STRING: snprintf(tmp, sizeof tmp, "\"%s\"", t[i].v.str); break;
-        case FOAM_TOK_LABEL: snprintf(tmp, sizeof tmp, "%lld", (long long)t[i].v.label); break;
-        case FOAM_TOK_SCALAR: snprintf(tmp, sizeof tmp, "%.17g", t[i].v.scalar); break;
-        default: snprintf(tmp, sizeof tmp, "%s", "()"); break;
+    if (b->failed)
+        return;
+    if (b->n + len + 1 > b->cap) {
+        size_t cap = b->cap ? b->cap : 256;
+        while (cap < b->n + len + 1)
+            cap *= 2;
+        char *ns = ump_realloc_array(b->s, cap, 1);
+        if (!ns) {
+            b->failed = 1;
+            return;
         }
-        if (i > 0 && t[i - 1].type == FOAM_TOK_PUNCT && t[i - 1].v.punct == '(')
-            sep = "";
-        if (t[i].type == FOAM_TOK_PUNCT && t[i].v.punct == ')')
-            sep = "";
-        k += (size_t)snprintf(buf + k, len - k, "%s%s", sep, tmp);
-        if (k >= len)
-            k = len - 1;
+        b->s = ns;
+        b->cap = cap;
+    }
+    memcpy(b->s + b->n, str, len);
+    b->n += len;
+    b->s[b->n] = '\0';
+}
+
+static void sb_str(sbuf *b, const char *str) { sb_put(b, str, strlen(str)); }
+
+/* The shortest of %.15g..%.17g that reads back as v. */
+static void sb_num(sbuf *b, double v)
+{
+    char tmp[64];
+    for (int prec = 15; prec <= 17; prec++) {
+        snprintf(tmp, sizeof tmp, "%.*g", prec, v);
+        if (strtod(tmp, NULL) == v || prec == 17)
+            break;
+    }
+    sb_str(b, tmp);
+}
+
+static void dict_to_text(sbuf *b, const foam_dict *d);
+
+/* Tokens on one line, as OpenFOAM would read them back: no space after '('
+ * or before ')'; sub-dictionaries as "{ k v; }"; binary lists as ascii
+ * "N(...)". */
+static void tokens_to_text(sbuf *b, const foam_token *t, size_t nt)
+{
+    for (size_t i = 0; i < nt; i++) {
+        char tmp[64];
+        int nospace = i == 0 || (t[i - 1].type == FOAM_TOK_PUNCT && t[i - 1].v.punct == '(') ||
+                      (t[i].type == FOAM_TOK_PUNCT && t[i].v.punct == ')');
+        if (!nospace)
+            sb_str(b, " ");
+        switch (t[i].type) {
+        case FOAM_TOK_PUNCT: sb_put(b, &t[i].v.punct, 1); break;
+        case FOAM_TOK_WORD: sb_str(b, t[i].v.str); break;
+        case FOAM_TOK_STRING: sb_str(b, "\""); sb_str(b, t[i].v.str); sb_str(b, "\""); break;
+        case FOAM_TOK_LABEL:
+            snprintf(tmp, sizeof tmp, "%lld", (long long)t[i].v.label);
+            sb_str(b, tmp);
+            break;
+        case FOAM_TOK_SCALAR: sb_num(b, t[i].v.scalar); break;
+        case FOAM_TOK_DICT: dict_to_text(b, t[i].v.dict); break;
+        case FOAM_TOK_BLOB: {
+            const foam_blob *bl = &t[i].v.blob;
+            snprintf(tmp, sizeof tmp, "%zu(", bl->n);
+            sb_str(b, tmp);
+            for (size_t e = 0; e < bl->n; e++) {
+                if (e)
+                    sb_str(b, " ");
+                if (bl->ncomp > 1)
+                    sb_str(b, "(");
+                for (int c = 0; c < bl->ncomp; c++) {
+                    size_t k = e * (size_t)bl->ncomp + (size_t)c;
+                    if (c)
+                        sb_str(b, " ");
+                    if (bl->is_label) {
+                        snprintf(tmp, sizeof tmp, "%lld", (long long)((const int64_t *)bl->data)[k]);
+                        sb_str(b, tmp);
+                    } else {
+                        sb_num(b, ((const double *)bl->data)[k]);
+                    }
+                }
+                if (bl->ncomp > 1)
+                    sb_str(b, ")");
+            }
+            sb_str(b, ")");
+            break;
+        }
+        }
+    }
+}
+
+static void dict_to_text(sbuf *b, const foam_dict *d)
+{
+    sb_str(b, "{");
+    for (size_t i = 0; i < d->n; i++) {
+        const foam_entry *x = &d->e[i];
+        sb_str(b, " ");
+        if (x->is_pattern) {
+            sb_str(b, "\"");
+            sb_str(b, x->key);
+            sb_str(b, "\"");
+        } else {
+            sb_str(b, x->key);
+        }
+        sb_str(b, " ");
+        if (x->dict) {
+            dict_to_text(b, x->dict);
+        } else {
+            tokens_to_text(b, x->tok, x->ntok);
+            sb_str(b, ";");
+        }
+    }
+    sb_str(b, " }");
+}
+
+/* A word-valued key of a boundary condition that umppmFoam implements only
+ * with its default (phi phi; U U; rho rho; psi none): absent or equal to
+ * dflt, else refused by name with why. */
+static ump_status key_default_word(const foam_dict *d, const char *key, const char *dflt, const char *bc,
+                                   const char *patch, const char *why, ump_err *err)
+{
+    const foam_entry *x = foam_dict_find(d, key, 0);
+    if (!x)
+        return UMP_OK;
+    int ok = !x->dict && x->ntok == 1 && (x->tok[0].type == FOAM_TOK_WORD || x->tok[0].type == FOAM_TOK_STRING) &&
+             strcmp(x->tok[0].v.str, dflt) == 0;
+    if (ok)
+        return UMP_OK;
+    sbuf b = {0};
+    if (x->dict)
+        sb_str(&b, "{...}");
+    else
+        tokens_to_text(&b, x->tok, x->ntok);
+    ump_status rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: patch '%s': %s: '%s %s' is not implemented by "
+                             "umppmFoam (only %s %s: %s)", x->file, x->line, patch, bc, key,
+                             b.s ? b.s : "", key, dflt, why);
+    free(b.s);
+    return rc;
+}
+
+/* A key of the boundary condition that umppmFoam does not implement at all. */
+static ump_status key_refused(const foam_dict *d, const char *key, const char *bc, const char *patch,
+                              const char *why, ump_err *err)
+{
+    const foam_entry *x = foam_dict_find(d, key, 0);
+    if (!x)
+        return UMP_OK;
+    return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: patch '%s': %s: key '%s' is not implemented by umppmFoam "
+                    "(%s)", x->file, x->line, patch, bc, key, why);
+}
+
+#define WHY_PHI "the solver's own face flux"
+#define WHY_RHO "kinematic pressure and volumetric flow, no density"
+
+/* The keys of v1912's boundary conditions that umppmFoam implements only
+ * in part: refused by name unless they have the value umppmFoam implements. */
+static ump_status check_bc_keys(const foam_dict *d, fld_bc_type t, const fld_field *fld, const char *type,
+                                const char *patch, const foam_entry *te, ump_err *err)
+{
+    switch (t) {
+    case FLD_BC_INLETOUTLET:
+    case FLD_BC_OUTLETINLET:
+    case FLD_BC_PRESSUREINLETOUTLETVELOCITY:
+        return key_default_word(d, "phi", "phi", type, patch, WHY_PHI, err);
+    case FLD_BC_TOTALPRESSURE: {
+        /* v1912 totalPressure: kinematic pressure (dimensions m^2/s^2)
+         * with psi none is p0 - 0.5 (1 - pos0(phi)) |U|^2; rho is used only
+         * for a pressure in Pa, gamma only with psi */
+        static const double kin[7] = {0, 2, -2, 0, 0, 0, 0};
+        for (int k = 0; k < 7; k++)
+            if (fld->dims[k] != kin[k])
+                return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: patch '%s': totalPressure on a pressure of "
+                                "dimensions [%g %g %g %g %g %g %g]: umppmFoam implements kinematic pressure "
+                                "[0 2 -2 0 0 0 0] only (as icoFoam)", te->file, te->line, patch, fld->dims[0],
+                                fld->dims[1], fld->dims[2], fld->dims[3], fld->dims[4], fld->dims[5],
+                                fld->dims[6]);
+        UMP_CALL(key_default_word(d, "phi", "phi", type, patch, WHY_PHI, err));
+        UMP_CALL(key_default_word(d, "U", "U", type, patch, "the solver's velocity", err));
+        UMP_CALL(key_default_word(d, "rho", "rho", type, patch, WHY_RHO, err));
+        UMP_CALL(key_default_word(d, "psi", "none", type, patch, "incompressible flow", err));
+        const foam_entry *g = foam_dict_find(d, "gamma", 0);
+        double gamma = 1;
+        if (g && (foam_get_scalar(d, "gamma", &gamma, err) != UMP_OK || gamma != 1))
+            return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: patch '%s': totalPressure: 'gamma %g' is not "
+                            "implemented by umppmFoam (only gamma 1: incompressible flow, p0 - |U|^2/2)",
+                            g->file, g->line, patch, gamma);
+        return UMP_OK;
+    }
+    case FLD_BC_UNIFORMFIXEDVALUE:
+        /* v1912's PatchFunction1 rotates uniformValue by a coordinateSystem
+         * of the patch dictionary (checked with its icoFoam) */
+        return key_refused(d, "coordinateSystem", type, patch,
+                           "it rotates uniformValue; give the value in the global axes", err);
+    case FLD_BC_FLOWRATEINLETVELOCITY:
+        UMP_CALL(key_refused(d, "massFlowRate", type, patch,
+                             "it needs the density rho; give volumetricFlowRate instead", err));
+        UMP_CALL(key_default_word(d, "rho", "rho", type, patch, WHY_RHO, err));
+        UMP_CALL(key_refused(d, "rhoInlet", type, patch, "a density for massFlowRate; umppmFoam has "
+                             "volumetricFlowRate only", err));
+        {
+            int extrapolate = 0;
+            UMP_CALL(foam_get_bool_or(d, "extrapolateProfile", 0, &extrapolate, err));
+            if (extrapolate) {
+                const foam_entry *x = foam_dict_find(d, "extrapolateProfile", 0);
+                return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: patch '%s': flowRateInletVelocity: "
+                                "'extrapolateProfile true' is not implemented by umppmFoam (only the uniform "
+                                "profile, extrapolateProfile false)", x->file, x->line, patch);
+            }
+        }
+        return UMP_OK;
+    default:
+        return UMP_OK;
+    }
+}
+
+/* The keyword of the second value list of type t (aux), or NULL. */
+static const char *aux_key(fld_bc_type t)
+{
+    switch (t) {
+    case FLD_BC_INLETOUTLET: return "inletValue";
+    case FLD_BC_FIXEDFLUXPRESSURE: return "gradient";
+    case FLD_BC_OUTLETINLET: return "outletValue";
+    case FLD_BC_TOTALPRESSURE: return "p0";
+    case FLD_BC_PRESSUREINLETOUTLETVELOCITY: return "tangentialVelocity";
+    default: return NULL;
     }
 }
 
@@ -147,7 +355,7 @@ static ump_status read_patch_entry(const foam_entry *e, const pmesh *pm, int p, 
     int t = fld_bc_parse(type);
     const foam_entry *te = foam_dict_find(d, "type", 0);
     if (t < 0) {
-        char list[512] = "";
+        char list[1024] = "";
         for (int k = 0; k < FLD_BC_NTYPES; k++) {
             strncat(list, k ? " " : "", sizeof list - strlen(list) - 1);
             strncat(list, fld_bc_name((fld_bc_type)k), sizeof list - strlen(list) - 1);
@@ -172,20 +380,26 @@ static ump_status read_patch_entry(const foam_entry *e, const pmesh *pm, int p, 
         for (size_t k = 0; k < nc; k++)
             fp->value[i * nc + k] = fp->type == FLD_BC_NOSLIP
                                         ? 0.0 : fld->internal[(size_t)pm->owner[pp->start + (ump_idx)i] * nc + k];
+    if ((fp->type == FLD_BC_NOSLIP || fp->type == FLD_BC_FLOWRATEINLETVELOCITY ||
+         fp->type == FLD_BC_PRESSUREINLETOUTLETVELOCITY) && ncomp != 3)
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: patch '%s': %s applies to vector fields only",
+                        te->file, te->line, pp->name, type);
+    if (fp->type == FLD_BC_TOTALPRESSURE && ncomp != 1)
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: patch '%s': %s applies to the pressure (a scalar field) only",
+                        te->file, te->line, pp->name, type);
+    UMP_CALL(check_bc_keys(d, fp->type, fld, type, pp->name, te, err));
+    /* v1912 requires `value` of these (pressureInletOutletVelocity reads it
+     * unconditionally) */
     int need_value = fp->type == FLD_BC_FIXEDVALUE || fp->type == FLD_BC_MOVINGWALLVELOCITY ||
-                     fp->type == FLD_BC_CALCULATED;
-    const char *auxkey = fp->type == FLD_BC_INLETOUTLET ? "inletValue"
-                         : fp->type == FLD_BC_FIXEDFLUXPRESSURE ? "gradient" : NULL;
-    if (fp->type == FLD_BC_NOSLIP && ncomp != 3)
-        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: patch '%s': noSlip applies to vector fields only",
-                        te->file, te->line, pp->name);
+                     fp->type == FLD_BC_CALCULATED || fp->type == FLD_BC_PRESSUREINLETOUTLETVELOCITY;
+    const char *auxkey = aux_key(fp->type);
     const foam_entry *ve = foam_dict_find(d, "value", 0);
     if (need_value && !ve)
         return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: patch '%s': type %s needs a 'value' entry",
                         te->file, te->line, pp->name, type);
     int use_value = ve && fp->type != FLD_BC_EMPTY && fp->type != FLD_BC_NOSLIP &&
                     fp->type != FLD_BC_ZEROGRADIENT && fp->type != FLD_BC_CYCLIC &&
-                    fp->type != FLD_BC_SYMMETRYPLANE && fp->type != FLD_BC_SYMMETRY;
+                    fp->type != FLD_BC_SYMMETRYPLANE && fp->type != FLD_BC_SYMMETRY && fp->type != FLD_BC_SLIP;
     if (use_value) {
         if (ve->dict)
             return UMP_FAIL(err, UMP_ERR_PARSE, "%s:%d: patch '%s': value must be uniform/nonuniform",
@@ -196,12 +410,18 @@ static ump_status read_patch_entry(const foam_entry *e, const pmesh *pm, int p, 
     }
     if (auxkey) {
         const foam_entry *ae = foam_dict_find(d, auxkey, 0);
-        if (fp->type == FLD_BC_INLETOUTLET && !ae)
-            return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: patch '%s': inletOutlet needs an 'inletValue' entry",
-                            te->file, te->line, pp->name);
-        fp->aux = ump_alloc_array(n * nc, sizeof *fp->aux);
-        if (!fp->aux)
-            return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", te->file);
+        int required = fp->type == FLD_BC_INLETOUTLET || fp->type == FLD_BC_OUTLETINLET ||
+                       fp->type == FLD_BC_TOTALPRESSURE;
+        if (required && !ae)
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: patch '%s': %s needs a '%s' entry",
+                            te->file, te->line, pp->name, type, auxkey);
+        /* an optional list that is absent: gradient zero (fixedFluxPressure);
+         * no tangentialVelocity (pressureInletOutletVelocity: aux stays NULL) */
+        if (ae || fp->type == FLD_BC_FIXEDFLUXPRESSURE) {
+            fp->aux = ump_alloc_array(n * nc, sizeof *fp->aux);
+            if (!fp->aux)
+                return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", te->file);
+        }
         if (ae) {
             if (ae->dict)
                 return UMP_FAIL(err, UMP_ERR_PARSE, "%s:%d: patch '%s': %s must be uniform/nonuniform",
@@ -209,21 +429,42 @@ static ump_status read_patch_entry(const foam_entry *e, const pmesh *pm, int p, 
             size_t pos = 0;
             UMP_CALL(read_values(ae->tok, ae->ntok, &pos, n, ncomp, fp->aux, ae->file, auxkey, err));
         }
+        /* v1912: without `value`, totalPressure starts at p0 and outletInlet
+         * at outletValue */
+        if (!use_value && (fp->type == FLD_BC_TOTALPRESSURE || fp->type == FLD_BC_OUTLETINLET))
+            memcpy(fp->value, fp->aux, n * nc * sizeof *fp->value);
     }
-    /* keep every other key verbatim */
+    const char *fnkey = fp->type == FLD_BC_UNIFORMFIXEDVALUE       ? "uniformValue"
+                        : fp->type == FLD_BC_FLOWRATEINLETVELOCITY ? "volumetricFlowRate"
+                                                                   : NULL;
+    if (fnkey) {
+        char what[512];
+        snprintf(what, sizeof what, "patch '%s': %s %s", pp->name, type, fnkey);
+        if (!foam_dict_find(d, fnkey, 0))
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: patch '%s': %s needs a '%s' entry%s", te->file, te->line,
+                            pp->name, type, fnkey,
+                            fp->type == FLD_BC_FLOWRATEINLETVELOCITY ? " (massFlowRate is not implemented)" : "");
+        UMP_CALL(f1_read(d, fnkey, fp->type == FLD_BC_UNIFORMFIXEDVALUE ? ncomp : 1,
+                         fp->type == FLD_BC_UNIFORMFIXEDVALUE ? F1_PATCH : 0u, what, &fp->fn, err));
+    }
+    /* keep every other key verbatim (written back after type) */
     for (size_t i = 0; i < d->n; i++) {
         const foam_entry *x = &d->e[i];
-        if (strcmp(x->key, "type") == 0 || strcmp(x->key, "value") == 0 ||
-            (auxkey && strcmp(x->key, auxkey) == 0) || x->dict)
+        if (strcmp(x->key, "type") == 0 || strcmp(x->key, "value") == 0 || (auxkey && strcmp(x->key, auxkey) == 0))
             continue;
         fld_extra *ne = ump_realloc_array(fp->extra, (size_t)fp->nextra + 1, sizeof *fp->extra);
         if (!ne)
             return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", te->file);
         fp->extra = ne;
-        char text[1024];
-        tokens_to_text(x->tok, x->ntok, text, sizeof text);
+        sbuf text = {0};
+        if (x->dict)
+            dict_to_text(&text, x->dict);
+        else
+            tokens_to_text(&text, x->tok, x->ntok);
         ne[fp->nextra].key = ump_strdup(x->key);
-        ne[fp->nextra].text = ump_strdup(text);
+        ne[fp->nextra].text = text.failed ? NULL : text.s ? text.s : ump_strdup("");
+        if (text.failed)
+            free(text.s);
         fp->nextra++;
         if (!ne[fp->nextra - 1].key || !ne[fp->nextra - 1].text)
             return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", te->file);

@@ -535,20 +535,34 @@ static int bc_writes_value(fld_bc_type t)
     case FLD_BC_MOVINGWALLVELOCITY:
     case FLD_BC_FIXEDFLUXPRESSURE:
     case FLD_BC_INLETOUTLET:
+    case FLD_BC_UNIFORMFIXEDVALUE:
+    case FLD_BC_FLOWRATEINLETVELOCITY:
+    case FLD_BC_OUTLETINLET:
+    case FLD_BC_TOTALPRESSURE:
+    case FLD_BC_PRESSUREINLETOUTLETVELOCITY:
         return 1;
     default:
-        return 0;
+        return 0; /* slip writes its type only, as v1912 */
     }
 }
 
 /* The keyword of the second value list, or NULL. */
 static const char *bc_aux_key(fld_bc_type t)
 {
-    if (t == FLD_BC_INLETOUTLET)
-        return "inletValue";
-    if (t == FLD_BC_FIXEDFLUXPRESSURE)
-        return "gradient";
-    return NULL;
+    switch (t) {
+    case FLD_BC_INLETOUTLET: return "inletValue";
+    case FLD_BC_FIXEDFLUXPRESSURE: return "gradient";
+    case FLD_BC_OUTLETINLET: return "outletValue";
+    case FLD_BC_TOTALPRESSURE: return "p0";
+    case FLD_BC_PRESSUREINLETOUTLETVELOCITY: return "tangentialVelocity";
+    default: return NULL;
+    }
+}
+
+/* Is the second value list optional (written only when present)? */
+static int bc_aux_optional(fld_bc_type t)
+{
+    return t == FLD_BC_PRESSUREINLETOUTLETVELOCITY;
 }
 
 static ump_status check_field(const char *path, const pmesh *pm, const fld_field *f,
@@ -571,7 +585,7 @@ static ump_status check_field(const char *path, const pmesh *pm, const fld_field
                   (long)p->n, (long)pm->patch[i].n);
         UMP_CHECK(p->n == 0 || !bc_writes_value(p->type) || p->value, err, UMP_ERR_INPUT,
                   "%s: patch %s (%s) has no values", path, pn, fld_bc_name(p->type));
-        UMP_CHECK(p->n == 0 || !bc_aux_key(p->type) || p->aux, err, UMP_ERR_INPUT,
+        UMP_CHECK(p->n == 0 || !bc_aux_key(p->type) || bc_aux_optional(p->type) || p->aux, err, UMP_ERR_INPUT,
                   "%s: patch %s (%s) has no %s", path, pn, fld_bc_name(p->type),
                   bc_aux_key(p->type) ? bc_aux_key(p->type) : "");
         for (int k = 0; k < p->nextra; k++)
@@ -608,10 +622,11 @@ static void put_field(sink *s, const pmesh *pm, const fld_field *f, const char *
          * inletOutlet...) right after type, before its value lists */
         for (int k = 0; k < p->nextra; k++) {
             put_key(s, 8, p->extra[k].key);
-            sink_printf(s, "%s;\n", p->extra[k].text);
+            /* a sub-dictionary ("{ k v; }", e.g. uniformValueCoeffs) takes no ';' */
+            sink_printf(s, p->extra[k].text[0] == '{' ? "%s\n" : "%s;\n", p->extra[k].text);
         }
         const char *aux = bc_aux_key(p->type);
-        if (aux) {
+        if (aux && (p->aux || !bc_aux_optional(p->type))) {
             put_key(s, 8, aux);
             put_field_value(s, p->aux ? p->aux : none, p->n, f->ncomp, binary, prec);
         }
@@ -713,7 +728,13 @@ static void put_phi(sink *s, const field_job *j)
         int empty = pp->kind == PMESH_EMPTY;
         sink_printf(s, "    %s\n    {\n", pp->name);
         put_key(s, 8, "type");
-        sink_puts(s, empty ? "empty;\n" : pp->kind == PMESH_CYCLIC ? "cyclic;\n" : "calculated;\n");
+        /* constraint patches carry their own type, as OpenFOAM's phi (a
+         * "calculated" symmetryPlane patch is refused when read back) */
+        sink_puts(s, empty                                 ? "empty;\n"
+                     : pp->kind == PMESH_CYCLIC         ? "cyclic;\n"
+                     : pp->kind == PMESH_SYMMETRYPLANE  ? "symmetryPlane;\n"
+                     : pp->kind == PMESH_SYMMETRY       ? "symmetry;\n"
+                                                        : "calculated;\n");
         put_key(s, 8, "value");
         put_field_value(s, phi + (empty ? 0 : pp->start), empty ? 0 : pp->n, 1, j->binary, j->prec);
         sink_puts(s, "    }\n");

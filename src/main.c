@@ -214,7 +214,27 @@ static ump_status make_geometry_fields(const pmesh *pm, const mesh2d *m, fld_fie
     return UMP_OK;
 }
 
-static int write_fields(const char *case_dir, const char *tname, const pmesh *pm, const mesh2d *m,
+/* Boundary conditions that are functions of time and were read without a
+ * `value` (uniformFixedValue, flowRateInletVelocity): their value at the
+ * start time t0, as OpenFOAM evaluates them when it reads them. */
+static ump_status start_values(fld_field *f, const pmesh *pm, const mesh2d *m, double t0, ump_err *err)
+{
+    for (int p = 0; p < pm->npatches; p++) {
+        fld_patch *fp = &f->patch[p];
+        const pmesh_patch *pp = &pm->patch[p];
+        if (!fp->fn || fp->value_given)
+            continue;
+        double *nrm = ump_alloc_array(3 * (size_t)pp->n + 3, sizeof *nrm);
+        if (!nrm)
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
+        double area = mesh_patch_area(m, p, nrm);
+        fld_bc_eval(fp, f->ncomp, t0, nrm, area, fp->value);
+        free(nrm);
+    }
+    return UMP_OK;
+}
+
+static int write_fields(const char *case_dir, const char *tname, double t0, const pmesh *pm, const mesh2d *m,
                         const case_control *ctl)
 {
     ump_err err;
@@ -228,7 +248,8 @@ static int write_fields(const char *case_dir, const char *tname, const pmesh *pm
     for (int i = 0; i < 2; i++) {
         snprintf(path, sizeof path, "%s/%s", dir, names[i]);
         printf("Reading field %s\n\n", names[i]);
-        if (fio_read_field(path, pm, ncomp[i], &f[i], &err) != UMP_OK) {
+        if (fio_read_field(path, pm, ncomp[i], &f[i], &err) != UMP_OK ||
+            start_values(f[i], pm, m, t0, &err) != UMP_OK) {
             rc = fatal(&err);
             goto done;
         }
@@ -366,7 +387,7 @@ static int run(int argc, char **argv)
     }
     print_mesh(pm, m);
     if (o.write_fields)
-        rc = write_fields(o.case_dir, tname, pm, m, &ctl);
+        rc = write_fields(o.case_dir, tname, t0, pm, m, &ctl);
     mesh_free(&m);
     pmesh_free(&pm);
     if (rc == 0)

@@ -53,6 +53,26 @@ void mesh_to3d(const mesh2d *m, double X, double Y, double out[3])
     out[m->ax[1]] = Y;
 }
 
+double mesh_patch_area(const mesh2d *m, int p, double *nrm)
+{
+    const pmesh_patch *pp = &m->pm->patch[p];
+    double area = 0;
+    for (ump_idx i = 0; i < pp->n; i++) {
+        ump_idx f = m->pmface_to_face[pp->start + i];
+        if (nrm) {
+            double *n = nrm + 3 * (size_t)i;
+            n[0] = n[1] = n[2] = 0;
+            if (f >= m->ninternal) {
+                n[m->ax[0]] = m->nx[f];
+                n[m->ax[1]] = m->ny[f];
+            }
+        }
+        if (f >= m->ninternal)
+            area += m->len[f] * (m->zmax - m->zmin); /* the face's 3-D area */
+    }
+    return area;
+}
+
 /* Newell area vector of polyMesh face f (3-D, |A| = area, right-hand rule). */
 static void face_area_vector(const pmesh *pm, ump_idx f, double A[3])
 {

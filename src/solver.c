@@ -37,10 +37,22 @@
  *
  * Choices where the paper is silent (also in the README):
  *   - Boundary particles carry the prescribed velocity on fixedValue/noSlip/
- *     movingWallVelocity faces; on zeroGradient (outlet) faces the velocity of
- *     the owner cell (Eq. 36 of the previous step); on inletOutlet faces the
- *     inletValue where the last flux entered, else the owner cell velocity;
- *     on symmetry planes the owner cell velocity without its normal part.
+ *     movingWallVelocity/uniformFixedValue/flowRateInletVelocity faces (the
+ *     last two evaluated at the new time of the step, sol_set_time); on
+ *     zeroGradient (outlet) faces the velocity of the owner cell (Eq. 36 of
+ *     the previous step); on inletOutlet faces the inletValue where the last
+ *     flux entered, else the owner cell velocity; on outletInlet faces the
+ *     reverse (outletValue where the last flux left); on
+ *     pressureInletOutletVelocity faces the owner cell velocity where the
+ *     last flux left, and where it entered the owner cell's normal velocity
+ *     plus the tangential part of tangentialVelocity (zero if not given);
+ *     on symmetry planes and slip walls the owner cell velocity without its
+ *     normal part. "The last flux" is the corrected face flux of the
+ *     previous step, the phi OpenFOAM's boundary conditions look up.
+ *   - totalPressure faces are fixed-pressure (Dirichlet) faces whose value
+ *     is set before each PPE solve: p0 where the last flux left, p0 -
+ *     |U_b|^2/2 where it entered, U_b the face's boundary-particle velocity
+ *     of this step (v1912's p0 - 0.5 (1 - pos0(phi)) |U_p|^2, kinematic).
  *   - MLS at a face whose velocity is not prescribed leaves out that face's
  *     own boundary particle (its value is derived from the interior).
  *   - The pressure gradient at a particle (Eq. 10) is the MLS derivative of
@@ -84,7 +96,8 @@
 #include <omp.h>
 #endif
 
-enum { BU_FIXED = 0, BU_OUTLET, BU_INLETOUTLET, BU_SYMMETRY };
+/* Velocity condition of a boundary face (boundary_velocity). */
+enum { BU_FIXED = 0, BU_OUTLET, BU_INLETOUTLET, BU_SYMMETRY, BU_OUTLETINLET, BU_PRESSUREINLETOUTLET };
 enum { BT_FIXED = 0, BT_ZEROGRADIENT, BT_INLETOUTLET };
 
 typedef struct sol_setup {
@@ -94,9 +107,19 @@ typedef struct sol_setup {
     ppe *pe;
     /* boundary conditions per boundary face b = f - ninternal */
     unsigned char *u_kind;
-    double *ub, *vb;           /* prescribed velocity or inletValue */
     unsigned char *p_dir;      /* [nfaces] fixed pressure */
-    double *prgh_f;            /* [nfaces] buoyant: prescribed p_rgh */
+    unsigned char *p_total;    /* [nb] totalPressure face */
+    double *p0;                /* [nb] totalPressure: p0 */
+    /* boundary conditions that are functions of time (uniformFixedValue,
+     * flowRateInletVelocity), evaluated by sol_set_time */
+    struct sol_timed {
+        int patch;             /* pmesh patch */
+        int is_p;              /* 0: U, 1: p (p_rgh when buoyant) */
+        double area;           /* total 3-D face area of the patch */
+        double *nrm;           /* [3*n] outward unit normals (3-D axes) */
+        double *val;           /* [3*n] scratch for the face values */
+    } *timed;
+    int ntimed;
     int need_ref;              /* no fixed-pressure face: pRefCell fixes the level */
     unsigned char *t_kind;     /* buoyant: temperature condition per boundary face */
     double *tb;
@@ -144,6 +167,11 @@ typedef struct sol_state {
     /* mesh fields */
     double *p, *uc, *vc, *usc, *vsc, *flux, *gflux, *gx, *gy, *div;
     double *pf;                /* [nfaces] face pressure of fixed faces (pi) */
+    /* boundary values of this step per boundary face b = f - ninternal */
+    double *ub, *vb;           /* prescribed velocity (fixed faces), inletValue,
+                                  outletValue, or the tangential inflow velocity
+                                  of pressureInletOutletVelocity */
+    double *prgh_f;            /* [nfaces] buoyant: prescribed p_rgh */
     double *Tc, *gtx, *gty;    /* buoyant: mesh temperature T_P, its LS gradient */
     /* per particle */
     size_t wcap;
@@ -162,6 +190,7 @@ typedef struct sol_state {
 struct sol {
     sol_setup su;
     sol_state st;
+    const fld_field *U, *pfld; /* borrowed: the boundary conditions of sol_set_time */
     int nthreads;
     sol_work *work;            /* [nthreads] */
 };
@@ -181,6 +210,7 @@ void sol_default_settings(sol_settings *s)
     s->p_ref_cell = 0;
     s->p_ref_value = 0;
     s->sort_interval = 1;
+    s->t_start = 0;
 }
 
 static int thread_id(void)
@@ -264,7 +294,12 @@ void sol_free(sol **pS)
     lsq_free(&su->g);
     ppe_free(&su->pe);
     lsolve_rows_free(&st->kry);
-    void *arr[] = {su->u_kind, su->ub, su->vb, su->p_dir, su->prgh_f, su->t_kind, su->tb, su->ghc, su->ghf,
+    for (int k = 0; su->timed && k < su->ntimed; k++) {
+        free(su->timed[k].nrm);
+        free(su->timed[k].val);
+    }
+    free(su->timed);
+    void *arr[] = {su->u_kind, st->ub, st->vb, su->p_dir, su->p_total, su->p0, st->prgh_f, su->t_kind, su->tb, su->ghc, su->ghf,
                    su->st_off, su->st_cell, su->st_sx, su->st_sy, su->ru_off, su->ru_q0, su->ru_q1,
                    su->ru_sx, su->ru_sy, su->of_off, su->of_face, st->p, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
@@ -451,7 +486,53 @@ static double zero_gradient_T(const sol_setup *su, const sol_state *st, ump_idx 
     return st->Tc[o] + st->gtx[o] * dx + st->gty[o] * dy;
 }
 
-/* Boundary particle values for this step (see the choices at the top). */
+/* The velocity of boundary face f (b = f - ninternal) from its condition,
+ * the owner cell velocity (*u, *v on entry) and the last corrected flux
+ * (see the choices at the top): the value of its boundary particle, and
+ * the face value written. Inflow is flux < 0, as OpenFOAM's neg(phi). */
+static void boundary_velocity(const sol_setup *su, const sol_state *st, ump_idx b, ump_idx f, double *u,
+                              double *v)
+{
+    const mesh2d *m = su->m;
+    double nx = m->nx[f], ny = m->ny[f], phi = st->flux[f];
+    switch (su->u_kind[b]) {
+    case BU_FIXED: /* fixedValue, noSlip, movingWallVelocity, uniformFixedValue,
+                      flowRateInletVelocity */
+        *u = st->ub[b];
+        *v = st->vb[b];
+        break;
+    case BU_INLETOUTLET: /* inletValue in, zeroGradient out */
+        if (phi < 0) {
+            *u = st->ub[b];
+            *v = st->vb[b];
+        }
+        break;
+    case BU_OUTLETINLET: /* outletValue out (pos0(phi)), zeroGradient in */
+        if (phi >= 0) {
+            *u = st->ub[b];
+            *v = st->vb[b];
+        }
+        break;
+    case BU_PRESSUREINLETOUTLET: /* in: (n.u_P) n + tangential velocity; out: u_P */
+        if (phi < 0) {
+            double un = *u * nx + *v * ny;
+            *u = un * nx + st->ub[b];
+            *v = un * ny + st->vb[b];
+        }
+        break;
+    case BU_SYMMETRY: { /* symmetryPlane, symmetry, slip: u_P without its normal part */
+        double un = *u * nx + *v * ny;
+        *u -= un * nx;
+        *v -= un * ny;
+        break;
+    }
+    default: /* zeroGradient, calculated */
+        break;
+    }
+}
+
+/* Boundary particle values for this step (see the choices at the top), and
+ * the totalPressure face values of this step's PPE. */
 static void set_boundary_particles(const sol_setup *su, sol_state *st)
 {
     const mesh2d *m = su->m;
@@ -459,28 +540,18 @@ static void set_boundary_particles(const sol_setup *su, sol_state *st)
     for (ump_idx b = 0; b < bp->n; b++) {
         ump_idx f = bp->face[b], o = m->owner[f];
         double u = st->uc[o], v = st->vc[o];
-        switch (su->u_kind[b]) {
-        case BU_FIXED:
-            u = su->ub[b];
-            v = su->vb[b];
-            break;
-        case BU_INLETOUTLET:
-            if (st->flux[f] < 0) {
-                u = su->ub[b];
-                v = su->vb[b];
-            }
-            break;
-        case BU_SYMMETRY: {
-            double un = u * m->nx[f] + v * m->ny[f];
-            u -= un * m->nx[f];
-            v -= un * m->ny[f];
-            break;
-        }
-        default:
-            break;
-        }
+        boundary_velocity(su, st, b, f, &u, &v);
         bp->u[b] = u;
         bp->v[b] = v;
+        if (su->p_total[b]) {
+            /* totalPressureFvPatchScalarField::updateCoeffs, kinematic, psi
+             * none: p0 - 0.5 (1 - pos0(phi)) |U_p|^2 */
+            double pt = su->p0[b] - (st->flux[f] < 0 ? 0.5 * (u * u + v * v) : 0.0);
+            if (su->set.buoyant)
+                st->prgh_f[f] = pt; /* p_rgh: turned into pi below */
+            else
+                st->pf[f] = pt;
+        }
     }
     if (!su->set.buoyant)
         return;
@@ -494,7 +565,7 @@ static void set_boundary_particles(const sol_setup *su, sol_state *st)
         /* fixed p_rgh: pi = p_rgh - beta (T_f - TRef) gh_f (the buoyant p_rgh
          * relation of solver.h) */
         if (su->p_dir[f])
-            st->pf[f] = su->prgh_f[f] - su->set.beta * (T - su->set.t_ref) * su->ghf[f];
+            st->pf[f] = st->prgh_f[f] - su->set.beta * (T - su->set.t_ref) * su->ghf[f];
     }
 }
 
@@ -515,21 +586,37 @@ static ump_status read_bcs(sol_setup *su, sol_state *st, const fld_field *U, con
             case FLD_BC_FIXEDVALUE:
             case FLD_BC_NOSLIP:
             case FLD_BC_MOVINGWALLVELOCITY:
+            case FLD_BC_UNIFORMFIXEDVALUE:     /* value: given, or at t_start (sol_create) */
+            case FLD_BC_FLOWRATEINLETVELOCITY:
                 su->u_kind[b] = BU_FIXED;
-                su->ub[b] = val[m->ax[0]];
-                su->vb[b] = val[m->ax[1]];
+                st->ub[b] = val[m->ax[0]];
+                st->vb[b] = val[m->ax[1]];
                 break;
             case FLD_BC_ZEROGRADIENT:
             case FLD_BC_CALCULATED:
                 su->u_kind[b] = BU_OUTLET;
                 break;
             case FLD_BC_INLETOUTLET:
-                su->u_kind[b] = BU_INLETOUTLET;
-                su->ub[b] = bu->aux[3 * (size_t)i + (size_t)m->ax[0]];
-                su->vb[b] = bu->aux[3 * (size_t)i + (size_t)m->ax[1]];
+            case FLD_BC_OUTLETINLET:
+                su->u_kind[b] = bu->type == FLD_BC_INLETOUTLET ? BU_INLETOUTLET : BU_OUTLETINLET;
+                st->ub[b] = bu->aux[3 * (size_t)i + (size_t)m->ax[0]]; /* inletValue / outletValue */
+                st->vb[b] = bu->aux[3 * (size_t)i + (size_t)m->ax[1]];
+                break;
+            case FLD_BC_PRESSUREINLETOUTLETVELOCITY:
+                /* refValue = tangentialVelocity - n (n . tangentialVelocity):
+                 * its in-plane tangential part (zero when not given) */
+                su->u_kind[b] = BU_PRESSUREINLETOUTLET;
+                if (bu->aux) {
+                    double tu = bu->aux[3 * (size_t)i + (size_t)m->ax[0]];
+                    double tv = bu->aux[3 * (size_t)i + (size_t)m->ax[1]];
+                    double tn = tu * m->nx[f] + tv * m->ny[f];
+                    st->ub[b] = tu - tn * m->nx[f];
+                    st->vb[b] = tv - tn * m->ny[f];
+                }
                 break;
             case FLD_BC_SYMMETRYPLANE:
             case FLD_BC_SYMMETRY:
+            case FLD_BC_SLIP: /* slip: zero normal velocity, free tangential, as symmetry */
                 su->u_kind[b] = BU_SYMMETRY;
                 break;
             default:
@@ -539,17 +626,31 @@ static ump_status read_bcs(sol_setup *su, sol_state *st, const fld_field *U, con
             }
             switch (bpp->type) {
             case FLD_BC_FIXEDVALUE:
+            case FLD_BC_UNIFORMFIXEDVALUE: /* value: given, or at t_start (sol_create) */
+            case FLD_BC_TOTALPRESSURE:     /* value: given, or p0; set each step */
                 su->p_dir[f] = 1;
                 st->pf[f] = bpp->value[i];
-                if (su->prgh_f)
-                    su->prgh_f[f] = bpp->value[i];
+                if (st->prgh_f)
+                    st->prgh_f[f] = bpp->value[i];
+                if (bpp->type == FLD_BC_TOTALPRESSURE) {
+                    su->p_total[b] = 1;
+                    su->p0[b] = bpp->aux[i];
+                }
                 break;
             case FLD_BC_ZEROGRADIENT:
             case FLD_BC_FIXEDFLUXPRESSURE:
             case FLD_BC_SYMMETRYPLANE:
             case FLD_BC_SYMMETRY:
+            case FLD_BC_SLIP: /* a scalar's slip is zeroGradient (basicSymmetry) */
             case FLD_BC_CALCULATED:
                 break;
+            case FLD_BC_INLETOUTLET:
+            case FLD_BC_OUTLETINLET:
+                return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                                "p: boundary condition '%s' on patch '%s' is not supported for pressure: it switches "
+                                "each face between a fixed value and zeroGradient with the flow direction, and "
+                                "umppmFoam's pressure matrix is factorized once for a fixed set of fixed-pressure "
+                                "faces; use fixedValue or totalPressure", fld_bc_name(bpp->type), pp->name);
             default:
                 return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
                                 "p: boundary condition '%s' on patch '%s' is not supported for pressure",
@@ -563,6 +664,88 @@ static ump_status read_bcs(sol_setup *su, sol_state *st, const fld_field *U, con
         }
     }
     return UMP_OK;
+}
+
+/* Values at time t of the timed patches (all, or only those whose field
+ * file gave no `value`) into the step's boundary values. Per face, serial:
+ * a few operations per boundary face and step. */
+static void timed_eval(sol *S, double t, const fld_field *U, const fld_field *pfld, int only_missing)
+{
+    sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    const pmesh *pm = m->pm;
+    for (int k = 0; k < su->ntimed; k++) {
+        struct sol_timed *tp = &su->timed[k];
+        const fld_patch *fp = tp->is_p ? &pfld->patch[tp->patch] : &U->patch[tp->patch];
+        if (only_missing && fp->value_given)
+            continue;
+        fld_bc_eval(fp, tp->is_p ? 1 : 3, t, tp->nrm, tp->area, tp->val);
+        const pmesh_patch *pp = &pm->patch[tp->patch];
+        for (ump_idx i = 0; i < pp->n; i++) {
+            ump_idx f = m->pmface_to_face[pp->start + i];
+            if (f < m->ninternal)
+                continue;
+            if (tp->is_p) {
+                if (st->prgh_f)
+                    st->prgh_f[f] = tp->val[i]; /* p_rgh, turned into pi each step */
+                else
+                    st->pf[f] = tp->val[i];
+            } else {
+                st->ub[f - m->ninternal] = tp->val[3 * (size_t)i + (size_t)m->ax[0]];
+                st->vb[f - m->ninternal] = tp->val[3 * (size_t)i + (size_t)m->ax[1]];
+            }
+        }
+    }
+}
+
+/* The patches whose condition is a function of time (uniformFixedValue of
+ * U or p, flowRateInletVelocity), with their normals and areas (mesh-only,
+ * once); those without a `value` in the field file start at t_start (as
+ * v1912 evaluates them when it reads them). */
+static ump_status timed_build(sol *S, const fld_field *U, const fld_field *pfld, ump_err *err)
+{
+    sol_setup *su = &S->su;
+    const mesh2d *m = su->m;
+    const pmesh *pm = m->pm;
+    for (int pass = 0; pass < 2; pass++) {
+        int n = 0;
+        for (int p = 0; p < pm->npatches; p++)
+            for (int is_p = 0; is_p < 2; is_p++) {
+                const fld_patch *fp = is_p ? &pfld->patch[p] : &U->patch[p];
+                if (!fp->fn || (fp->type != FLD_BC_UNIFORMFIXEDVALUE && fp->type != FLD_BC_FLOWRATEINLETVELOCITY))
+                    continue;
+                if (pass == 1) {
+                    struct sol_timed *tp = &su->timed[n];
+                    const pmesh_patch *pp = &pm->patch[p];
+                    tp->patch = p;
+                    tp->is_p = is_p;
+                    if (!(tp->nrm = ump_alloc_array(3 * (size_t)pp->n + 3, sizeof(double))) ||
+                        !(tp->val = ump_alloc_array(3 * (size_t)pp->n + 3, sizeof(double))))
+                        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory");
+                    tp->area = mesh_patch_area(m, p, tp->nrm); /* gSum(magSf), normals */
+                    if (fp->type == FLD_BC_FLOWRATEINLETVELOCITY && !(tp->area > 0))
+                        return UMP_FAIL(err, UMP_ERR_INPUT, "patch '%s': flowRateInletVelocity on a patch of "
+                                        "zero area", pp->name);
+                }
+                n++;
+            }
+        if (pass == 0) {
+            su->ntimed = n;
+            if (n && !(su->timed = ump_alloc_array((size_t)n, sizeof *su->timed)))
+                return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory");
+        }
+    }
+    timed_eval(S, su->set.t_start, U, pfld, 1);
+    S->U = U;
+    S->pfld = pfld;
+    return UMP_OK;
+}
+
+void sol_set_time(sol *S, double t)
+{
+    if (S->su.ntimed)
+        timed_eval(S, t, S->U, S->pfld, 0);
 }
 
 /* Temperature boundary conditions (see the choices at the top). */
@@ -772,8 +955,9 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
         !(st->gflux = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->pf = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(su->p_dir = ump_alloc_array((size_t)nf, 1)) || !(su->u_kind = ump_alloc_array((size_t)nb, 1)) ||
-        !(su->ub = ump_alloc_array((size_t)nb, sizeof(double))) ||
-        !(su->vb = ump_alloc_array((size_t)nb, sizeof(double))))
+        !(su->p_total = ump_alloc_array((size_t)nb, 1)) || !(su->p0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
+        !(st->ub = ump_alloc_array((size_t)nb, sizeof(double))) ||
+        !(st->vb = ump_alloc_array((size_t)nb, sizeof(double))))
         goto nomem;
     if (s->buoyant) {
         if (!T) {
@@ -785,7 +969,7 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
             if (!(*carr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
                 goto nomem;
         if (!(su->ghf = ump_alloc_array((size_t)nf, sizeof(double))) ||
-            !(su->prgh_f = ump_alloc_array((size_t)nf, sizeof(double))) ||
+            !(st->prgh_f = ump_alloc_array((size_t)nf, sizeof(double))) ||
             !(su->t_kind = ump_alloc_array((size_t)nb, 1)) ||
             !(su->tb = ump_alloc_array((size_t)nb, sizeof(double))))
             goto nomem;
@@ -808,7 +992,7 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
         st->vc[c] = U->internal[3 * (size_t)c + (size_t)m->ax[1]];
         st->p[c] = pfld->internal[c];
     }
-    if ((rc = read_bcs(su, st, U, pfld, err)) != UMP_OK)
+    if ((rc = read_bcs(su, st, U, pfld, err)) != UMP_OK || (rc = timed_build(S, U, pfld, err)) != UMP_OK)
         goto fail;
     su->need_ref = 1;
     for (ump_idx f = 0; f < nf; f++)
@@ -845,8 +1029,8 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
             u = 0.5 * (u + st->uc[m->neigh[f]]);
             v = 0.5 * (v + st->vc[m->neigh[f]]);
         } else if (su->u_kind[f - m->ninternal] == BU_FIXED) {
-            u = su->ub[f - m->ninternal];
-            v = su->vb[f - m->ninternal];
+            u = st->ub[f - m->ninternal];
+            v = st->vb[f - m->ninternal];
         } else if (su->u_kind[f - m->ninternal] == BU_SYMMETRY) {
             u = v = 0;
         }
@@ -1209,7 +1393,7 @@ static void step8_mls_velocity(sol *S)
         for (ump_idx fb = ni; fb < m->nfaces; fb++) { /* prescribed faces */
             ump_idx b = fb - ni;
             if (su->u_kind[b] == BU_FIXED)
-                st->flux[fb] = (su->ub[b] * m->nx[fb] + su->vb[b] * m->ny[fb]) * m->len[fb];
+                st->flux[fb] = (st->ub[b] * m->nx[fb] + st->vb[b] * m->ny[fb]) * m->len[fb];
             else if (su->u_kind[b] == BU_SYMMETRY)
                 st->flux[fb] = 0;
         }
@@ -1501,18 +1685,7 @@ void sol_face_values(const sol *S, ump_idx f, double *u, double *v, double *p)
     *p = st->p[o];
     if (f < m->ninternal)
         return;
-    ump_idx b = f - m->ninternal;
-    if (su->u_kind[b] == BU_FIXED) {
-        *u = su->ub[b];
-        *v = su->vb[b];
-    } else if (su->u_kind[b] == BU_SYMMETRY) {
-        double un = *u * m->nx[f] + *v * m->ny[f];
-        *u -= un * m->nx[f];
-        *v -= un * m->ny[f];
-    } else if (su->u_kind[b] == BU_INLETOUTLET && st->flux[f] < 0) {
-        *u = su->ub[b];
-        *v = su->vb[b];
-    }
+    boundary_velocity(su, st, f - m->ninternal, f, u, v);
     if (su->p_dir[f])
         *p = st->pf[f];
 }

@@ -10,6 +10,7 @@
 #ifndef UMPPM_FIELD_H
 #define UMPPM_FIELD_H
 
+#include "umppm/function1.h"
 #include "umppm/ump.h"
 
 typedef enum fld_bc_type {
@@ -24,6 +25,13 @@ typedef enum fld_bc_type {
     FLD_BC_SYMMETRY,
     FLD_BC_FIXEDFLUXPRESSURE,    /* pressure: gradient set so the flux matches */
     FLD_BC_INLETOUTLET,          /* zeroGradient out, inletValue in */
+    FLD_BC_SLIP,                 /* zero normal component, zero tangential gradient */
+    FLD_BC_UNIFORMFIXEDVALUE,    /* fixed value uniformValue(t), a Function1 of time */
+    FLD_BC_FLOWRATEINLETVELOCITY, /* U = -Q(t)/A n, Q = volumetricFlowRate(t) */
+    FLD_BC_OUTLETINLET,          /* outletValue out, zeroGradient in */
+    FLD_BC_TOTALPRESSURE,        /* p = p0 out, p0 - |U|^2/2 in (kinematic) */
+    FLD_BC_PRESSUREINLETOUTLETVELOCITY, /* zeroGradient out; in: normal part of
+                                    the cell value + tangentialVelocity */
     FLD_BC_NTYPES
 } fld_bc_type;
 
@@ -46,8 +54,13 @@ typedef struct fld_patch {
                             symmetry values are the adjacent cell values), never
                             NULL when n > 0 and type != EMPTY */
     int value_given;     /* 1: "value" was in the file */
-    double *aux;         /* [n*ncomp] inletValue (inletOutlet) or gradient
-                            (fixedFluxPressure), NULL otherwise */
+    double *aux;         /* [n*ncomp] inletValue (inletOutlet), gradient
+                            (fixedFluxPressure), outletValue (outletInlet), p0
+                            (totalPressure), tangentialVelocity
+                            (pressureInletOutletVelocity, NULL when not
+                            given); NULL otherwise */
+    f1 *fn;              /* uniformValue (uniformFixedValue), volumetricFlowRate
+                            (flowRateInletVelocity); NULL otherwise */
     fld_extra *extra;    /* other keys, in file order */
     int nextra;
 } fld_patch;
@@ -71,7 +84,19 @@ ump_status fld_copy(const fld_field *src, fld_field **out, ump_err *err);
 void fld_free(fld_field **f);
 
 /* 1 if the type prescribes the face value (fixedValue, noSlip,
- * movingWallVelocity); 0 otherwise. */
+ * movingWallVelocity, uniformFixedValue, flowRateInletVelocity,
+ * totalPressure); 0 otherwise. */
 int fld_bc_is_fixed(fld_bc_type t);
+
+/* Face values at time t of a boundary condition given by a function of time:
+ *   uniformFixedValue      uniformValue(t) on every face;
+ *   flowRateInletVelocity  -Q(t)/area n_i on face i (OpenFOAM v1912's
+ *                          flowRateInletVelocity without extrapolateProfile:
+ *                          a uniform speed into the patch), Q =
+ *                          volumetricFlowRate(t), area the patch's total face
+ *                          area (3-D: a 2-D case's faces have the mesh's
+ *                          depth), nrm [3*n] the faces' outward unit normals.
+ * out [n*ncomp]. Other types: nothing is written, returns 0; else 1. */
+int fld_bc_eval(const fld_patch *p, int ncomp, double t, const double *nrm, double area, double *out);
 
 #endif

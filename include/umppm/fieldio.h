@@ -52,8 +52,8 @@ ump_status fio_write_field(const char *dir, const char *location, const pmesh *p
  * [0 3 -1 0 0 0 0], "oriented oriented;"): phi [pm->nfaces] in m^3/s over
  * each polyMesh face, oriented by its normal (owner to neighbour, outwards on
  * patches); internalField the internal faces, each patch its faces (empty
- * patches: "value nonuniform 0();", cyclic patches type cyclic, the others
- * calculated; uniform when all values are equal, as Field::writeEntry). fmt
+ * patches: "value nonuniform 0();", cyclic, symmetryPlane and symmetry
+ * patches their own type, the others calculated; uniform when all values are equal, as Field::writeEntry). fmt
  * as fio_write_field. */
 ump_status fio_write_phi(const char *dir, const char *location, const pmesh *pm, const double *phi,
                          const fio_format *fmt, ump_err *err);

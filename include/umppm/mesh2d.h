@@ -111,6 +111,13 @@ typedef struct mesh_stats {
 
 void mesh_compute_stats(const mesh2d *m, mesh_stats *s);
 
+/* Total 3-D face area of the boundary faces of pmesh patch p (length x
+ * thickness, OpenFOAM's gSum(magSf); 0 for empty and cyclic patches), and,
+ * when nrm [3*n] is not NULL, the outward unit normal of each of its n
+ * faces in the polyMesh's 3-D axes (polyMesh face order; zero for faces that
+ * are not 2-D boundary faces). */
+double mesh_patch_area(const mesh2d *m, int p, double *nrm);
+
 /* 3-D coordinates of 2-D point (X,Y) on the mid-plane. */
 void mesh_to3d(const mesh2d *m, double X, double Y, double out[3]);
 

@@ -57,6 +57,9 @@ typedef struct sol_settings {
     double beta, t_ref;      /* expansion coefficient [1/K], TRef [K] */
     double kappa;            /* thermal diffusivity nu/Pr [m^2/s] */
     int sort_interval;       /* re-sort particles by cell every N steps (default 1; 0 never) */
+    double t_start;          /* start time: boundary conditions that are functions
+                                of time and have no `value` start at their value
+                                at t_start (default 0) */
 } sol_settings;
 
 void sol_default_settings(sol_settings *s);
@@ -93,7 +96,14 @@ typedef struct sol sol; /* opaque */
 /* Build the solver: LS gradient and PPE (assembled and factorized once),
  * boundary particles, and one fluid particle per centroid with the cell
  * values of U (and T). U and p give the boundary conditions (types and
- * values); for a buoyant case p is p_rgh (its fixedValue faces become
+ * values; U: fixedValue, noSlip, movingWallVelocity, uniformFixedValue,
+ * flowRateInletVelocity, zeroGradient, inletOutlet, outletInlet,
+ * pressureInletOutletVelocity, symmetryPlane, symmetry, slip, cyclic; p:
+ * fixedValue, uniformFixedValue, totalPressure, zeroGradient,
+ * fixedFluxPressure, symmetryPlane, symmetry, slip, cyclic; others, p
+ * inletOutlet/outletInlet and a face with U and p both fixed are refused
+ * with UMP_ERR_UNSUPPORTED/UMP_ERR_INPUT; U and p must stay alive for the
+ * time-dependent ones, sol_set_time); for a buoyant case p is p_rgh (its fixed faces become
  * pi = p_rgh - beta (T - TRef) gh each step) and T (required then; NULL
  * otherwise) gives the temperature: fixedValue, zeroGradient, symmetry,
  * symmetryPlane or inletOutlet. mesh, U, p and T are borrowed for the
@@ -112,6 +122,13 @@ ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y,
                              size_t *dropped, ump_err *err);
 /* Set the cell pressure (restart) before the first step. */
 void sol_set_pressure(sol *S, const double *p);
+
+/* The new time t of the coming step: evaluates the boundary conditions that
+ * are functions of time (uniformFixedValue of U or p, flowRateInletVelocity),
+ * as OpenFOAM's updateCoeffs does at the time of the step. Call it before
+ * each sol_step (after advancing the time); without it they keep their
+ * start values. */
+void sol_set_time(sol *S, double t);
 
 /* Advance one step of size dt. */
 ump_status sol_step(sol *S, double dt, sol_stats *st, ump_err *err);

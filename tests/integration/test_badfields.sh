@@ -53,8 +53,8 @@ check() {
 check U-unbalanced-brace  '0/U:[0-9]+: '        "sed -i 's/^    movingWall$/    movingWall {/' 0/U"
 check U-wrong-count       '0/U:[0-9]+: .*values for 400 cells' \
     "sed -i 's/^internalField .*/internalField nonuniform List<vector> 2((0 0 0) (0 0 0));/' 0/U"
-check U-unknown-bc        "0/U:[0-9]+: patch 'fixedWalls': boundary condition type 'slip'" \
-    "sed -i 's/noSlip/slip/' 0/U"
+check U-unknown-bc        "0/U:[0-9]+: patch 'fixedWalls': boundary condition type 'partialSlip'" \
+    "sed -i 's/noSlip/partialSlip/' 0/U"
 check U-missing-patch     "0/U:[0-9]+: boundaryField has no entry for patch 'fixedWalls'" \
     "sed -i 's/fixedWalls/otherWalls/' 0/U"
 check p-bad-number        '0/p:[0-9]+: '        "sed -i 's/^internalField .*/internalField uniform 1.2.3;/' 0/p"

@@ -5,7 +5,10 @@
 # Cases: the 20x20 blockMesh cavity (Re 100) with the adaptive UMPPM variant
 # (deletion and refill every step, so particle counts and order matter), and
 # the Taylor-Green vortex on 1600 periodic crossed triangles (UMPPM*),
-# 20 steps each, and on 25 600 triangles for 5 steps (threaded binning).
+# 20 steps each, and on 25 600 triangles for 5 steps (threaded binning); a
+# 20 x 10 channel with the boundary conditions of issue 15 (inlet
+# totalPressure + pressureInletOutletVelocity with tangentialVelocity,
+# outlet outletInlet U + uniformFixedValue sine p, one wall slip), 10 steps.
 # Asserts:
 #   - both runs report their thread count in the log banner;
 #   - U, p and every file of the particle cloud at the last time are
@@ -61,7 +64,56 @@ sed 's/endTime 0.125;/endTime 0.0078125;/; s/deltaT 0.00625;/deltaT 0.0015625;/;
 "$TOOLDIR/makeCrossedTriangleMesh" -case "$big" -n 80 > /dev/null
 "$TOOLDIR/setTaylorGreen" -case "$big" > /dev/null
 
-for c in "$cav:0.1" "$tg:0.125" "$big:0.0078125"; do
+# channel with the new boundary conditions, 10 steps of 0.005
+bcs=$work/bcs
+mkdir -p "$bcs/system" "$bcs/constant" "$bcs/0"
+cat > "$bcs/system/blockMeshDict" <<'BM'
+FoamFile { version 2.0; format ascii; class dictionary; object blockMeshDict; }
+vertices ((0 0 0) (2 0 0) (2 1 0) (0 1 0) (0 0 0.1) (2 0 0.1) (2 1 0.1) (0 1 0.1));
+blocks (hex (0 1 2 3 4 5 6 7) (20 10 1) simpleGrading (1 1 1));
+boundary
+(
+    inlet { type patch; faces ((0 4 7 3)); }
+    outlet { type patch; faces ((2 6 5 1)); }
+    bottom { type wall; faces ((1 5 4 0)); }
+    top { type wall; faces ((3 7 6 2)); }
+    frontAndBack { type empty; faces ((0 3 2 1) (4 5 6 7)); }
+);
+BM
+sed 's/endTime 0.125;/endTime 0.05;/; s/deltaT 0.00625;/deltaT 0.005;/; s/writeInterval 20;/writeInterval 10;/' \
+    "$tg/system/controlDict" > "$bcs/system/controlDict"
+printf 'FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }\nPISO { pRefCell 0; pRefValue 0; }\n' \
+    > "$bcs/system/fvSolution"
+echo 'FoamFile { version 2.0; format ascii; class dictionary; object transportProperties; } nu 0.05;' \
+    > "$bcs/constant/transportProperties"
+cat > "$bcs/0/U" <<'UF'
+FoamFile { version 2.0; format ascii; class volVectorField; object U; }
+dimensions [0 1 -1 0 0 0 0];
+internalField uniform (0.2 0 0);
+boundaryField
+{
+    inlet { type pressureInletOutletVelocity; tangentialVelocity uniform (0 0.05 0); value uniform (0 0 0); }
+    outlet { type outletInlet; outletValue uniform (0.3 0 0); }
+    bottom { type slip; }
+    top { type noSlip; }
+    frontAndBack { type empty; }
+}
+UF
+cat > "$bcs/0/p" <<'PF'
+FoamFile { version 2.0; format ascii; class volScalarField; object p; }
+dimensions [0 2 -2 0 0 0 0];
+internalField uniform 0;
+boundaryField
+{
+    inlet { type totalPressure; p0 uniform 0.5; }
+    outlet { type uniformFixedValue; uniformValue sine; uniformValueCoeffs { amplitude 0.1; frequency 10; scale 1; level 0; } }
+    "(bottom|top)" { type zeroGradient; }
+    frontAndBack { type empty; }
+}
+PF
+(cd "$bcs" && blockMesh > log.blockMesh 2>&1) || { echo "FAIL: blockMesh (bcs)"; exit 1; }
+
+for c in "$cav:0.1" "$tg:0.125" "$big:0.0078125" "$bcs:0.05"; do
     dir=${c%%:*} t=${c##*:} name=$(basename "${c%%:*}")
     for n in 1 2; do
         r=$work/$name-$n

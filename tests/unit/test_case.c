@@ -308,6 +308,131 @@ static pmesh *strip(void)
 static const char *VHDR = "FoamFile { version 2.0; format ascii; class volVectorField; object U; }\n"
                           "dimensions [0 1 -1 0 0 0 0];\n";
 
+/* The boundary conditions of issue 15 item 4 read, copied, written and
+ * read back: types, Function1s, second value lists (outletValue, p0,
+ * tangentialVelocity), v1912's start values without `value`, the keys kept
+ * verbatim (a sub-dictionary too), fld_bc_eval. */
+static void test_field_new_bcs(void **state)
+{
+    (void)state;
+    char d[64], path[256], out[128];
+    tu_tmpdir(d, sizeof d);
+    snprintf(path, sizeof path, "%s/U", d);
+    snprintf(out, sizeof out, "%s/w", d);
+    if (mkdir(out, 0755) != 0)
+        fail_msg("mkdir %s", out);
+    pmesh *pm = strip();
+    fld_field *f = NULL, *g = NULL, *c = NULL;
+    ump_err err;
+    write2(d, "U", VHDR,
+           "internalField uniform (1 0 0);\n"
+           "boundaryField {\n"
+           "  inlet { type flowRateInletVelocity; volumetricFlowRate table ((0 0) (1 0.2)); outOfBounds repeat;\n"
+           "          extrapolateProfile false; }\n"
+           "  outlet { type outletInlet; outletValue uniform (0.5 0 0); phi phi; }\n"
+           "  sides { type slip; }\n"
+           "  frontAndBack { type empty; }\n"
+           "}\n");
+    if (fio_read_field(path, pm, 3, &f, &err) != UMP_OK)
+        fail_msg("%s", err.msg);
+    assert_int_equal(f->patch[0].type, FLD_BC_FLOWRATEINLETVELOCITY);
+    assert_non_null(f->patch[0].fn);
+    assert_int_equal(f->patch[0].fn->kind, F1_TABLE);
+    assert_int_equal(f->patch[0].fn->bounds, F1_REPEAT);
+    assert_int_equal(f->patch[0].value_given, 0);
+    assert_int_equal(f->patch[1].type, FLD_BC_OUTLETINLET);
+    TU_CLOSE(f->patch[1].aux[0], 0.5, 0);
+    TU_CLOSE(f->patch[1].value[0], 0.5, 0); /* v1912: no value -> outletValue */
+    assert_int_equal(f->patch[2].type, FLD_BC_SLIP);
+    /* flowRateInletVelocity: -Q(t)/A n; Q(1.5) = 0.1 (repeat), A = 0.1, n = (-1 0 0) */
+    double n3[3] = {-1, 0, 0}, v[3];
+    assert_int_equal(fld_bc_eval(&f->patch[0], 3, 1.5, n3, 0.1, v), 1);
+    TU_CLOSE(v[0], 1, 1e-14);
+    TU_CLOSE(v[1], 0, 0);
+    assert_int_equal(fld_bc_eval(&f->patch[1], 3, 1.5, n3, 0.1, v), 0);
+    /* deep copy, write, read back */
+    assert_int_equal(fld_copy(f, &c, &err), UMP_OK);
+    fld_free(&f);
+    assert_int_equal(fio_write_field(out, "0", pm, c, NULL, &err), UMP_OK);
+    snprintf(path, sizeof path, "%s/U", out);
+    if (fio_read_field(path, pm, 3, &g, &err) != UMP_OK)
+        fail_msg("written U does not read back: %s", err.msg);
+    assert_int_equal(g->patch[0].type, FLD_BC_FLOWRATEINLETVELOCITY);
+    assert_int_equal(g->patch[0].value_given, 1);
+    double a[1], b[1];
+    for (double t = -0.3; t < 3; t += 0.35) {
+        f1_value(c->patch[0].fn, t, a);
+        f1_value(g->patch[0].fn, t, b);
+        TU_CLOSE(a[0], b[0], 0);
+    }
+    TU_CLOSE(g->patch[1].aux[0], 0.5, 0);
+    assert_int_equal(g->patch[2].type, FLD_BC_SLIP);
+    fld_free(&c);
+    fld_free(&g);
+
+    /* pressure: totalPressure with the defaults v1912 writes, uniformFixedValue
+     * sine with a Coeffs sub-dictionary kept verbatim */
+    static const char *PHDR = "FoamFile { version 2.0; format ascii; class volScalarField; object p; }\n"
+                              "dimensions [0 2 -2 0 0 0 0];\n";
+    write2(d, "p", PHDR,
+           "internalField uniform 0;\n"
+           "boundaryField {\n"
+           "  inlet { type totalPressure; rho rho; psi none; gamma 1; p0 uniform 2; }\n"
+           "  outlet { type uniformFixedValue; uniformValue sine;\n"
+           "           uniformValueCoeffs { amplitude 1; frequency 0.25; scale 3; level 1; } }\n"
+           "  sides { type slip; }\n"
+           "  frontAndBack { type empty; }\n"
+           "}\n");
+    snprintf(path, sizeof path, "%s/p", d);
+    if (fio_read_field(path, pm, 1, &f, &err) != UMP_OK)
+        fail_msg("%s", err.msg);
+    assert_int_equal(f->patch[0].type, FLD_BC_TOTALPRESSURE);
+    TU_CLOSE(f->patch[0].aux[0], 2, 0);
+    TU_CLOSE(f->patch[0].value[0], 2, 0); /* v1912: no value -> p0 */
+    assert_int_equal(f->patch[0].nextra, 3);
+    assert_int_equal(f->patch[1].type, FLD_BC_UNIFORMFIXEDVALUE);
+    assert_int_equal(fld_bc_eval(&f->patch[1], 1, 1, NULL, 0, v), 1);
+    TU_CLOSE(v[0], 4, 1e-14); /* sin(pi/2) 3 + 1 */
+    assert_int_equal(f->patch[1].nextra, 2);
+    assert_string_equal(f->patch[1].extra[1].key, "uniformValueCoeffs");
+    assert_string_equal(f->patch[1].extra[1].text, "{ amplitude 1; frequency 0.25; scale 3; level 1; }");
+    assert_int_equal(fio_write_field(out, "0", pm, f, NULL, &err), UMP_OK);
+    snprintf(path, sizeof path, "%s/p", out);
+    if (fio_read_field(path, pm, 1, &g, &err) != UMP_OK)
+        fail_msg("written p does not read back: %s", err.msg);
+    assert_int_equal(fld_bc_eval(&g->patch[1], 1, 1, NULL, 0, v), 1);
+    TU_CLOSE(v[0], 4, 1e-14);
+    assert_int_equal(g->patch[0].type, FLD_BC_TOTALPRESSURE);
+    fld_free(&f);
+    fld_free(&g);
+
+    /* pressureInletOutletVelocity: tangentialVelocity optional (aux NULL) */
+    write2(d, "U", VHDR,
+           "internalField uniform (1 0 0);\n"
+           "boundaryField {\n"
+           "  inlet { type pressureInletOutletVelocity; tangentialVelocity uniform (0 0.1 0); value uniform (0 0 0); }\n"
+           "  outlet { type pressureInletOutletVelocity; value uniform (0 0 0); }\n"
+           "  sides { type noSlip; }\n"
+           "  frontAndBack { type empty; }\n"
+           "}\n");
+    snprintf(path, sizeof path, "%s/U", d);
+    if (fio_read_field(path, pm, 3, &f, &err) != UMP_OK)
+        fail_msg("%s", err.msg);
+    assert_non_null(f->patch[0].aux);
+    TU_CLOSE(f->patch[0].aux[1], 0.1, 0);
+    assert_null(f->patch[1].aux);
+    assert_int_equal(fio_write_field(out, "0", pm, f, NULL, &err), UMP_OK);
+    fld_free(&f);
+    snprintf(path, sizeof path, "%s/U", out);
+    if (fio_read_field(path, pm, 3, &f, &err) != UMP_OK)
+        fail_msg("written U does not read back: %s", err.msg);
+    assert_non_null(f->patch[0].aux);
+    assert_null(f->patch[1].aux);
+    fld_free(&f);
+    pmesh_free(&pm);
+    tu_rmtree(d);
+}
+
 static void test_field_matching(void **state)
 {
     (void)state;
@@ -847,6 +972,7 @@ int main(void)
         cmocka_unit_test(test_times),
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_field_matching),
+        cmocka_unit_test(test_field_new_bcs),
         cmocka_unit_test(test_umppm_table),
         cmocka_unit_test(test_umppm_defaults),
         cmocka_unit_test(test_umppm_values),

@@ -149,13 +149,15 @@ static void test_bc_names(void **state)
     (void)state;
     static const char *const words[] = {
         "calculated", "fixedValue", "noSlip", "movingWallVelocity", "zeroGradient",
-        "empty", "cyclic", "symmetryPlane", "symmetry", "fixedFluxPressure", "inletOutlet"};
+        "empty", "cyclic", "symmetryPlane", "symmetry", "fixedFluxPressure", "inletOutlet", "slip",
+        "uniformFixedValue", "flowRateInletVelocity", "outletInlet", "totalPressure",
+        "pressureInletOutletVelocity"};
     assert_int_equal(sizeof words / sizeof words[0], FLD_BC_NTYPES);
     for (int t = 0; t < FLD_BC_NTYPES; t++) {
         assert_string_equal(fld_bc_name((fld_bc_type)t), words[t]);
         assert_int_equal(fld_bc_parse(words[t]), t);
     }
-    assert_int_equal(fld_bc_parse("totalPressure"), -1);
+    assert_int_equal(fld_bc_parse("partialSlip"), -1);
     assert_int_equal(fld_bc_parse("FixedValue"), -1);
     assert_int_equal(fld_bc_parse(""), -1);
     assert_int_equal(fld_bc_parse(NULL), -1);
@@ -167,6 +169,12 @@ static void test_bc_names(void **state)
     assert_int_equal(fld_bc_is_fixed(FLD_BC_INLETOUTLET), 0);
     assert_int_equal(fld_bc_is_fixed(FLD_BC_FIXEDFLUXPRESSURE), 0);
     assert_int_equal(fld_bc_is_fixed(FLD_BC_EMPTY), 0);
+    assert_int_equal(fld_bc_is_fixed(FLD_BC_UNIFORMFIXEDVALUE), 1);
+    assert_int_equal(fld_bc_is_fixed(FLD_BC_FLOWRATEINLETVELOCITY), 1);
+    assert_int_equal(fld_bc_is_fixed(FLD_BC_TOTALPRESSURE), 1);
+    assert_int_equal(fld_bc_is_fixed(FLD_BC_SLIP), 0);
+    assert_int_equal(fld_bc_is_fixed(FLD_BC_OUTLETINLET), 0);
+    assert_int_equal(fld_bc_is_fixed(FLD_BC_PRESSUREINLETOUTLETVELOCITY), 0);
 }
 
 static void test_create_copy_free(void **state)
