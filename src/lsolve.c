@@ -588,6 +588,13 @@ static ump_status cholmod_setup(lsolve *s, ump_err *err)
     cholmod_start(&s->cc);
     s->cholmod_started = 1;
     s->cc.print = 0;    /* silent: we report */
+    /* simplicial: the lane solves need a simplicial factor, and one made
+     * directly has L's exact pattern (a supernodal factor converted keeps
+     * the zeros of relaxed supernodes: 985 000 instead of 653 000 entries
+     * on the 160^2 cavity), and on these 2-D meshes it is also made faster
+     * (160^2: 0.14 against 0.25 s with the conversion; 400^2: 1.1 against
+     * 1.4 s) */
+    s->cc.supernodal = CHOLMOD_SIMPLICIAL;
     s->cc.final_ll = 1; /* LL' also for simplicial factors: a simplicial LDL' would
                            accept an indefinite matrix without pivoting */
     size_t nnz = (size_t)A->Ap[n];
