@@ -102,16 +102,11 @@ typedef struct part_bins {
     size_t cap;
     void *work;        /* scratch of part_manage (owned here, grown amortised) */
     size_t work_bytes;
-    ump_idx *tcnt;     /* per-thread counts of a threaded build [threads * ncells] */
-    size_t tcnt_len;
 } part_bins;
 
-/* Sets of at least this many particles are binned by all OpenMP threads
- * (the result is the serial one: by cell, then by index). */
-#define PART_BINS_PARALLEL_MIN 20000
 
 /* UMP_ERR_INPUT if a particle's cell is >= ncells (bins then invalid).
- * Threaded for large sets, with the same result as serial. */
+ */
 ump_status part_bins_build(part_bins *b, const mesh2d *m, const part_set *s, ump_err *err);
 /* Reorder the particles by cell (stable: by index within a cell), an O(N)
  * gather from the bins, so that neighbours in the mesh are neighbours in
