@@ -18,6 +18,9 @@
 #include "umppm/mesh2d.h"
 
 #include <math.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 #include <stdlib.h>
 #include <string.h>
 
@@ -713,6 +716,12 @@ static void sort_idx(ump_idx *a, ump_idx k)
     }
 }
 
+/* The union stencil of every cell: for each "outer" entry o of c (a vertex,
+ * through omap, or a cell of N1(c)), the inner list of o; with_outer adds
+ * o itself. Two passes (count, then fill and sort), each over the cells in
+ * parallel with a private mark array per thread: mark[q] == c means q is in
+ * c's list already, so no clearing between cells. The lists do not depend
+ * on the thread count. */
 static ump_status stencil_union(ump_idx nc, const ump_idx *ooff, const ump_idx *oidx, const ump_idx *omap,
                                 const ump_idx *ioff, const ump_idx *iidx, int with_outer, ump_idx *mark,
                                 ump_idx *off, ump_idx **out)
@@ -720,38 +729,68 @@ static ump_status stencil_union(ump_idx nc, const ump_idx *ooff, const ump_idx *
     ump_idx *list = NULL;
     off[0] = 0;
     for (int pass = 0; pass < 2; pass++) {
-        for (ump_idx c = 0; c < nc; c++)
-            mark[c] = -1;
-        for (ump_idx c = 0; c < nc; c++) {
-            ump_idx cnt = 0, base = off[c];
-            mark[c] = c;
-            for (ump_idx a = ooff[c]; a < ooff[c + 1]; a++) {
-                ump_idx o = omap ? omap[oidx[a]] : oidx[a];
-                if (with_outer && mark[o] != c) {
-                    mark[o] = c;
-                    if (pass)
-                        list[base + cnt] = o;
-                    cnt++;
-                }
-                for (ump_idx b = ioff[o]; b < ioff[o + 1]; b++) {
-                    ump_idx q = iidx[b];
-                    if (mark[q] == c)
-                        continue;
-                    mark[q] = c;
-                    if (pass)
-                        list[base + cnt] = q;
-                    cnt++;
-                }
+        int nomem = 0;
+#pragma omp parallel
+        {
+            ump_idx *mk = mark;
+#ifdef _OPENMP
+            if (omp_get_thread_num() > 0)
+                mk = ump_alloc_array((size_t)nc, sizeof *mk);
+#endif
+            if (!mk) {
+#pragma omp atomic write
+                nomem = 1;
+            } else {
+                for (ump_idx c = 0; c < nc; c++)
+                    mk[c] = -1;
             }
-            if (!pass && (int64_t)off[c] + cnt > UMP_IDX_MAX)
-                return UMP_ERR_INPUT;
-            if (!pass)
-                off[c + 1] = off[c] + cnt;
-            else
-                sort_idx(list + base, cnt);
+#pragma omp for schedule(static)
+            for (ump_idx c = 0; c < nc; c++) {
+                if (!mk)
+                    continue;
+                ump_idx cnt = 0, base = pass ? off[c] : 0;
+                mk[c] = c;
+                for (ump_idx a = ooff[c]; a < ooff[c + 1]; a++) {
+                    ump_idx o = omap ? omap[oidx[a]] : oidx[a];
+                    if (with_outer && mk[o] != c) {
+                        mk[o] = c;
+                        if (pass)
+                            list[base + cnt] = o;
+                        cnt++;
+                    }
+                    for (ump_idx b = ioff[o]; b < ioff[o + 1]; b++) {
+                        ump_idx q = iidx[b];
+                        if (mk[q] == c)
+                            continue;
+                        mk[q] = c;
+                        if (pass)
+                            list[base + cnt] = q;
+                        cnt++;
+                    }
+                }
+                if (!pass)
+                    off[c + 1] = cnt; /* counts; prefix sum below */
+                else
+                    sort_idx(list + base, cnt);
+            }
+            if (mk != mark)
+                free(mk);
         }
-        if (!pass && !(list = ump_alloc_array((size_t)off[nc], sizeof *list)))
+        if (nomem) {
+            free(list);
             return UMP_ERR_NOMEM;
+        }
+        if (!pass) {
+            int64_t sum = 0;
+            for (ump_idx c = 0; c < nc; c++) {
+                sum += off[c + 1];
+                if (sum > UMP_IDX_MAX)
+                    return UMP_ERR_INPUT;
+                off[c + 1] = (ump_idx)sum;
+            }
+            if (!(list = ump_alloc_array((size_t)off[nc], sizeof *list)))
+                return UMP_ERR_NOMEM;
+        }
     }
     *out = list;
     return UMP_OK;

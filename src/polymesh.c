@@ -582,14 +582,30 @@ ump_status pmesh_check(const pmesh *m, ump_err *err)
         return UMP_FAIL(err, UMP_ERR_INPUT,
                         "%s/boundary: patches end at face %lld but the mesh has %ld faces", d, (long long)next,
                         (long)m->nfaces);
-    UMP_CALL(check_duplicate_faces(m, err));
-    ump_idx *off = NULL, *cf = NULL;
-    ump_status rc = cell_faces(m, &off, &cf, err);
-    if (rc == UMP_OK)
-        rc = check_closed_cells(m, off, cf, err);
-    free(off);
-    free(cf);
-    return rc;
+    /* the two topology checks are independent: concurrently on two threads;
+     * a duplicate face is reported first, as when serial */
+    ump_status rd = UMP_OK, rcl = UMP_OK;
+    ump_err ed, ecl;
+#pragma omp parallel sections num_threads(2) if (omp_get_max_threads() > 1)
+    {
+#pragma omp section
+        rd = check_duplicate_faces(m, &ed);
+#pragma omp section
+        {
+            ump_idx *off = NULL, *cf = NULL;
+            rcl = cell_faces(m, &off, &cf, &ecl);
+            if (rcl == UMP_OK)
+                rcl = check_closed_cells(m, off, cf, &ecl);
+            free(off);
+            free(cf);
+        }
+    }
+    if (rd != UMP_OK || rcl != UMP_OK) {
+        if (err)
+            *err = rd != UMP_OK ? ed : ecl;
+        return rd != UMP_OK ? rd : rcl;
+    }
+    return UMP_OK;
 }
 
 ump_status pmesh_read(const char *dir, pmesh **out, ump_err *err)
