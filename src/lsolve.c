@@ -43,6 +43,9 @@ _Static_assert(sizeof(ump_idx) == sizeof(int), "lsolve uses the int SuiteSparse 
  * the same with one cell pinned at 2e2..3e6. */
 #define LSOLVE_COND_MAX 1e11
 
+/* CHOLMOD's flops / nnz(L) above which the factorization is supernodal */
+#define LSOLVE_SUPERNODAL_SWITCH 120.0
+
 #define ALLOC(p, n) ((p) = ump_alloc_array((size_t)(n), sizeof *(p)))
 
 /* ---- triplets ------------------------------------------------------------ */
@@ -545,8 +548,12 @@ static void cholmod_load_values(lsolve *s)
 static ump_status cholmod_lanes(lsolve *s, ump_err *err)
 {
     lsolve_lanes_free(&s->lanes);
+    int was_super = s->L->is_super;
     if (!cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, s->L, &s->cc) || s->cc.status != CHOLMOD_OK)
         return cholmod_status(s, "cholmod_change_factor", err);
+    /* the explicit zeros of relaxed supernodes out of the pattern */
+    if (was_super && (!cholmod_resymbol(s->cA, NULL, 0, 1, s->L, &s->cc) || s->cc.status != CHOLMOD_OK))
+        return cholmod_status(s, "cholmod_resymbol", err);
     ump_idx n = s->A->n;
     if (!s->ly && !(s->ly = ump_alloc_array((size_t)n, sizeof *s->ly)))
         return UMP_FAIL(err, UMP_ERR_NOMEM, "CHOLMOD: out of memory (n = %d)", (int)n);
@@ -588,13 +595,15 @@ static ump_status cholmod_setup(lsolve *s, ump_err *err)
     cholmod_start(&s->cc);
     s->cholmod_started = 1;
     s->cc.print = 0;    /* silent: we report */
-    /* simplicial: the lane solves need a simplicial factor, and one made
-     * directly has L's exact pattern (a supernodal factor converted keeps
-     * the zeros of relaxed supernodes: 985 000 instead of 653 000 entries
-     * on the 160^2 cavity), and on these 2-D meshes it is also made faster
-     * (160^2: 0.14 against 0.25 s with the conversion; 400^2: 1.1 against
-     * 1.4 s) */
-    s->cc.supernodal = CHOLMOD_SIMPLICIAL;
+    /* simplicial below a flop density: the lane solves need a simplicial
+     * factor, and one made directly has L's exact pattern, while a
+     * supernodal factor converted keeps the zeros of relaxed supernodes
+     * (resymbol removes them, at a cost). Measured on the cavity: 160^2
+     * (flops/nnz(L) = 93) simplicial 0.13 s set-up against 0.20 s
+     * supernodal + conversion; 320^2 (162) the simplicial factorization
+     * takes 4.4x the instructions of the supernodal one. */
+    s->cc.supernodal = CHOLMOD_AUTO;
+    s->cc.supernodal_switch = LSOLVE_SUPERNODAL_SWITCH;
     s->cc.final_ll = 1; /* LL' also for simplicial factors: a simplicial LDL' would
                            accept an indefinite matrix without pivoting */
     size_t nnz = (size_t)A->Ap[n];
