@@ -127,14 +127,14 @@ ump_status lsolve_lanes_build(ump_idx n, const int *Lp, const int *Li, const dou
     for (ump_idx j = 0; j < n; j++) /* children before parents: parent(j) > j */
         if (parent[j] >= 0)
             W[parent[j]] += W[j];
-    for (ump_idx j = 0; j < n; j++)
-        coff[(parent[j] >= 0 ? parent[j] : n) + 1]++;
+    for (ump_idx j = 0; j < n; j++) /* children lists (the roots are nobody's child) */
+        if (parent[j] >= 0)
+            coff[parent[j] + 1]++;
     for (ump_idx j = 0; j < n; j++)
         coff[j + 1] += coff[j];
-    for (ump_idx j = 0; j < n; j++) { /* children of the virtual root n: the roots */
-        ump_idx q = parent[j] >= 0 ? parent[j] : n;
-        child[coff[q]++] = j;
-    }
+    for (ump_idx j = 0; j < n; j++)
+        if (parent[j] >= 0)
+            child[coff[parent[j]]++] = j;
     for (ump_idx j = n; j > 0; j--)
         coff[j] = coff[j - 1];
     coff[0] = 0;
