@@ -74,7 +74,11 @@ void lsolve_lanes_work(const lsolve_lanes *z, size_t work[3])
 static size_t assign(const ump_idx *F, ump_idx nf, const size_t *W, signed char *lane_of_root,
                      ump_idx *order)
 {
-    for (ump_idx a = 0; a < nf; a++) { /* order: F by W descending (insertion: nf stays small) */
+    for (ump_idx a = 0; a < nf; a++) { /* order: F by W descending (insertion: nf is small) */
+        if (nf > 4096) { /* a forest of many small trees: in index order, O(nf) */
+            order[a] = a;
+            continue;
+        }
         ump_idx k = a;
         while (k > 0 && W[F[order[k - 1]]] < W[F[a]]) {
             order[k] = order[k - 1];

@@ -304,6 +304,29 @@ static void test_cholmod_lanes(void **state)
     assert_true(relres(A, x1, b) < 1e-14);
     lsolve_free(&s);
     lsolve_mat_free(&A);
+    /* a diagonal matrix (n roots, no tree): split in index order, exact */
+    {
+        int nd = 20000;
+        lsolve_trip t;
+        assert_int_equal(lsolve_trip_init(&t, nd, (size_t)nd, &err), UMP_OK);
+        for (int i = 0; i < nd; i++)
+            assert_int_equal(lsolve_trip_add(&t, i, i, 2.0 + (i % 7), &err), UMP_OK);
+        lsolve_mat *D = from_trip(&t);
+        lsolve_trip_free(&t);
+        double *bd = malloc(sizeof(double) * nd), *xd = malloc(sizeof(double) * nd);
+        for (int i = 0; i < nd; i++)
+            bd[i] = 1.0 + i;
+        assert_int_equal(lsolve_factor(D, LSOLVE_CHOLMOD, &s, &err), UMP_OK);
+        assert_true(lsolve_lane_work(s, w));
+        assert_true(w[0] + w[1] == (size_t)nd && w[2] == 0);
+        assert_int_equal(lsolve_solve(s, bd, xd, &err), UMP_OK);
+        for (int i = 0; i < nd; i++)
+            TU_CLOSE(xd[i], bd[i] / (2.0 + (i % 7)), 1e-15);
+        lsolve_free(&s);
+        lsolve_mat_free(&D);
+        free(bd);
+        free(xd);
+    }
     /* chain and forest */
     int k = 200;
     double *d = calloc((size_t)k * k, sizeof(double));
