@@ -293,22 +293,19 @@ static ump_status write_time(app *a, const rt_time *t, ump_err *err)
     {
 #pragma omp section
         {
-            if ((rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->U, &fmt, &ef)) != UMP_OK ||
-                (rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->p, &fmt, &ef)) != UMP_OK ||
-                (a->T && (rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->T, &fmt, &ef)) != UMP_OK) ||
-                (a->T && (rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->prgh, &fmt, &ef)) != UMP_OK))
-                (void)0;
-            else
+            if ((rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->U, &fmt, &ef)) == UMP_OK &&
+                (rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->p, &fmt, &ef)) == UMP_OK &&
+                (!a->T || (rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->T, &fmt, &ef)) == UMP_OK) &&
+                (!a->T || (rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->prgh, &fmt, &ef)) == UMP_OK))
                 rcf = write_phi(a, td.tmp_dir, t->name, &fmt, &ef);
         }
 #pragma omp section
         {
             if ((rcc = fio_write_cloud(td.tmp_dir, t->name, a->um.cloud_name, P->n, pos, vel, P->cell, P->id,
-                                       a->ctl.write_precision, &ec)) != UMP_OK ||
-                (a->T && (rcc = fio_write_cloud_field(td.tmp_dir, t->name, a->um.cloud_name, "T", 1, P->n,
-                                                      P->T, a->ctl.write_precision, &ec)) != UMP_OK))
-                (void)0;
-            else if (a->um.write_quality)
+                                       a->ctl.write_precision, &ec)) == UMP_OK &&
+                (!a->T || (rcc = fio_write_cloud_field(td.tmp_dir, t->name, a->um.cloud_name, "T", 1, P->n,
+                                                       P->T, a->ctl.write_precision, &ec)) == UMP_OK) &&
+                a->um.write_quality)
                 rcc = write_quality(a, td.tmp_dir, t->name, &ec);
         }
     }

@@ -228,3 +228,15 @@ ump_status fld_copy(const fld_field *src, fld_field **out, ump_err *err)
     *out = f;
     return UMP_OK;
 }
+
+const char *fld_bc_aux_key(fld_bc_type t)
+{
+    switch (t) {
+    case FLD_BC_INLETOUTLET: return "inletValue";
+    case FLD_BC_FIXEDFLUXPRESSURE: return "gradient";
+    case FLD_BC_OUTLETINLET: return "outletValue";
+    case FLD_BC_TOTALPRESSURE: return "p0";
+    case FLD_BC_PRESSUREINLETOUTLETVELOCITY: return "tangentialVelocity";
+    default: return NULL;
+    }
+}

@@ -328,19 +328,6 @@ static ump_status check_bc_keys(const foam_dict *d, fld_bc_type t, const fld_fie
     }
 }
 
-/* The keyword of the second value list of type t (aux), or NULL. */
-static const char *aux_key(fld_bc_type t)
-{
-    switch (t) {
-    case FLD_BC_INLETOUTLET: return "inletValue";
-    case FLD_BC_FIXEDFLUXPRESSURE: return "gradient";
-    case FLD_BC_OUTLETINLET: return "outletValue";
-    case FLD_BC_TOTALPRESSURE: return "p0";
-    case FLD_BC_PRESSUREINLETOUTLETVELOCITY: return "tangentialVelocity";
-    default: return NULL;
-    }
-}
-
 static ump_status read_patch_entry(const foam_entry *e, const pmesh *pm, int p, int ncomp,
                                    fld_field *fld, ump_err *err)
 {
@@ -392,7 +379,7 @@ static ump_status read_patch_entry(const foam_entry *e, const pmesh *pm, int p, 
      * unconditionally) */
     int need_value = fp->type == FLD_BC_FIXEDVALUE || fp->type == FLD_BC_MOVINGWALLVELOCITY ||
                      fp->type == FLD_BC_CALCULATED || fp->type == FLD_BC_PRESSUREINLETOUTLETVELOCITY;
-    const char *auxkey = aux_key(fp->type);
+    const char *auxkey = fld_bc_aux_key(fp->type);
     const foam_entry *ve = foam_dict_find(d, "value", 0);
     if (need_value && !ve)
         return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: patch '%s': type %s needs a 'value' entry",

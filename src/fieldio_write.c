@@ -546,19 +546,6 @@ static int bc_writes_value(fld_bc_type t)
     }
 }
 
-/* The keyword of the second value list, or NULL. */
-static const char *bc_aux_key(fld_bc_type t)
-{
-    switch (t) {
-    case FLD_BC_INLETOUTLET: return "inletValue";
-    case FLD_BC_FIXEDFLUXPRESSURE: return "gradient";
-    case FLD_BC_OUTLETINLET: return "outletValue";
-    case FLD_BC_TOTALPRESSURE: return "p0";
-    case FLD_BC_PRESSUREINLETOUTLETVELOCITY: return "tangentialVelocity";
-    default: return NULL;
-    }
-}
-
 /* Is the second value list optional (written only when present)? */
 static int bc_aux_optional(fld_bc_type t)
 {
@@ -585,9 +572,9 @@ static ump_status check_field(const char *path, const pmesh *pm, const fld_field
                   (long)p->n, (long)pm->patch[i].n);
         UMP_CHECK(p->n == 0 || !bc_writes_value(p->type) || p->value, err, UMP_ERR_INPUT,
                   "%s: patch %s (%s) has no values", path, pn, fld_bc_name(p->type));
-        UMP_CHECK(p->n == 0 || !bc_aux_key(p->type) || bc_aux_optional(p->type) || p->aux, err, UMP_ERR_INPUT,
+        UMP_CHECK(p->n == 0 || !fld_bc_aux_key(p->type) || bc_aux_optional(p->type) || p->aux, err, UMP_ERR_INPUT,
                   "%s: patch %s (%s) has no %s", path, pn, fld_bc_name(p->type),
-                  bc_aux_key(p->type) ? bc_aux_key(p->type) : "");
+                  fld_bc_aux_key(p->type) ? fld_bc_aux_key(p->type) : "");
         for (int k = 0; k < p->nextra; k++)
             UMP_CHECK(p->extra && p->extra[k].key && *p->extra[k].key && p->extra[k].text,
                       err, UMP_ERR_INPUT, "%s: patch %s has an incomplete extra entry",
@@ -625,7 +612,7 @@ static void put_field(sink *s, const pmesh *pm, const fld_field *f, const char *
             /* a sub-dictionary ("{ k v; }", e.g. uniformValueCoeffs) takes no ';' */
             sink_printf(s, p->extra[k].text[0] == '{' ? "%s\n" : "%s;\n", p->extra[k].text);
         }
-        const char *aux = bc_aux_key(p->type);
+        const char *aux = fld_bc_aux_key(p->type);
         if (aux && (p->aux || !bc_aux_optional(p->type))) {
             put_key(s, 8, aux);
             put_field_value(s, p->aux ? p->aux : none, p->n, f->ncomp, binary, prec);

@@ -39,6 +39,10 @@ typedef enum fld_bc_type {
 const char *fld_bc_name(fld_bc_type t);
 /* Parse a type word; returns -1 when unsupported. */
 int fld_bc_parse(const char *word);
+/* The keyword of type t's second value list (inletValue, gradient,
+ * outletValue, p0, tangentialVelocity), or NULL: one table for the reader
+ * and the writer. */
+const char *fld_bc_aux_key(fld_bc_type t);
 
 /* An extra keyword of a boundary entry that umppmFoam keeps but does not
  * interpret (e.g. "rho rhok;" of fixedFluxPressure), written back verbatim. */
