@@ -71,6 +71,19 @@ int foam_lex_is_eof(const foam_token *t);
  * count may be followed by "( )" or by nothing. The token gets file/line. */
 ump_status foam_lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label,
                     int line, foam_token *out);
+/* The ascii body "N ( ... )" of a list file read in one pass over the
+ * characters, without a token per number, into FOAM_TOK_BLOB tokens the
+ * list getters take as they take binary ones:
+ *   FOAM_ASCII_LABELS   N(l l ...)            one blob of N labels
+ *   FOAM_ASCII_VECTORS  N((x y z) ...)        one blob of N 3-vectors
+ *   FOAM_ASCII_FACES    N(M(l ...) ...)       two blobs: N+1 offsets from 0,
+ *                                             then the concatenated labels
+ * The lexer must hold the count N as its look-ahead token. Only the plain
+ * form OpenFOAM writes is taken (see foam_lex.c); for anything else *nout
+ * is 0 and the lexer is left as it was, so that the token reader reads it
+ * and reports its errors exactly as before. */
+enum { FOAM_ASCII_LABELS = 1, FOAM_ASCII_VECTORS, FOAM_ASCII_FACES };
+ump_status foam_lex_ascii_list(foam_lexer *lx, int shape, foam_token out[2], int *nout);
 /* Next non-blank character (comments skipped) without consuming it, or -1. */
 ump_status foam_lex_peek_char(foam_lexer *lx, int *c);
 

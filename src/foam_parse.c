@@ -1317,6 +1317,17 @@ static ump_status parse_body(parser *p, foam_lexer *lx)
                             "%s: binary files of class '%s' are not supported", f->path,
                             f->class_name);
         }
+    } else {
+        int shape = strcmp(f->class_name, "labelList") == 0    ? FOAM_ASCII_LABELS
+                    : strcmp(f->class_name, "vectorField") == 0 ? FOAM_ASCII_VECTORS
+                    : strcmp(f->class_name, "faceList") == 0    ? FOAM_ASCII_FACES
+                                                                : 0;
+        foam_token bt[2];
+        int nb = 0;
+        if (shape)
+            UMP_CALL(foam_lex_ascii_list(lx, shape, bt, &nb));
+        for (int k = 0; k < nb; k++)
+            UMP_CALL(push_tok(p, &bt[k]));
     }
     UMP_CALL(parse_tokens(p, lx, f->dict, MODE_EOF, "", 0));
     return UMP_OK;
