@@ -613,76 +613,62 @@ ump_status foam_lex_peek_char(foam_lexer *lx, int *c)
  * per token) of a 0.35 s start-up. This reads the same characters once,
  * taking only what the token reader would read to the same values:
  * blanks between items (no comments), decimal labels of at most 18 digits
- * between 0 and UMP_IDX_MAX, each followed by a blank or a parenthesis,
- * scalars as lex_number reads them, and counts that match. Anything else
- * gives up (returns 0) and the token reader takes over from the start. */
-typedef struct ascii_scan {
-    const char *b;
-    size_t n, i;
-    int line;
-} ascii_scan;
-
-static void as_blank(ascii_scan *s)
+ * between 0 and UMP_IDX_MAX, each followed by a blank or the one
+ * parenthesis that may follow it, scalars as lex_number reads them, and
+ * counts that match. Anything else gives up (returns NULL) and the token
+ * reader takes over from the start. The cursor is a local pointer: kept in
+ * a struct, every int64 store of the output would make the compiler reload
+ * it (int64_t and size_t may alias). */
+static inline const char *as_blank(const char *p, const char *e, int *line)
 {
-    while (s->i < s->n && is_blank((unsigned char)s->b[s->i])) {
-        s->line += s->b[s->i] == '\n';
-        s->i++;
+    while (p < e && is_blank((unsigned char)*p)) {
+        *line += *p == '\n';
+        p++;
     }
+    return p;
 }
 
-static int as_char(ascii_scan *s, char c)
+static inline const char *as_char(const char *p, const char *e, int *line, char c)
 {
-    as_blank(s);
-    if (s->i < s->n && s->b[s->i] == c) {
-        s->i++;
-        return 1;
-    }
-    return 0;
+    p = as_blank(p, e, line);
+    return p < e && *p == c ? p + 1 : NULL;
 }
 
-/* A label, then one of the characters of 'end' (not consumed). */
-static int as_label(ascii_scan *s, const char *end, int64_t *v)
+/* A label, then a blank or endc (not consumed). */
+static inline const char *as_label(const char *p, const char *e, int *line, char endc, int64_t *v)
 {
-    as_blank(s);
-    size_t i = s->i, d0 = i;
-    int64_t x = 0;
-    for (; i < s->n && s->b[i] >= '0' && s->b[i] <= '9'; i++) {
-        if (i - d0 == 18)
-            return 0;
-        x = x * 10 + (s->b[i] - '0');
-    }
-    if (i == d0 || i >= s->n || x > UMP_IDX_MAX)
-        return 0;
-    char c = s->b[i];
-    if (!(is_blank((unsigned char)c) || (c && strchr(end, c))))
-        return 0;
-    s->i = i;
-    *v = x;
-    return 1;
+    p = as_blank(p, e, line);
+    const char *d0 = p;
+    uint64_t x = 0; /* wraps harmlessly past 19 digits: refused below */
+    for (; p < e && (unsigned)(*p - '0') < 10u; p++)
+        x = x * 10 + (uint64_t)(*p - '0');
+    if (p == d0 || p - d0 > 18 || p >= e || x > (uint64_t)UMP_IDX_MAX ||
+        !(is_blank((unsigned char)*p) || *p == endc))
+        return NULL;
+    *v = (int64_t)x;
+    return p;
 }
 
 /* A scalar as lex_number reads it (a label-like run as the double of that
  * label), then a blank or ')'. */
-static int as_scalar(ascii_scan *s, double *v)
+static const char *as_scalar(const char *p, const char *e, int *line, double *v)
 {
-    as_blank(s);
-    size_t i = s->i, st = i;
-    if (i >= s->n || !(s->b[i] == '-' || s->b[i] == '.' || (s->b[i] >= '0' && s->b[i] <= '9')))
-        return 0;
-    while (i < s->n && is_number_char((unsigned char)s->b[i]))
-        i++;
-    size_t len = i - st;
-    if (i >= s->n || !(is_blank((unsigned char)s->b[i]) || s->b[i] == ')') || len >= 128 ||
-        (len == 1 && s->b[st] == '-'))
-        return 0;
-    const char *r = s->b + st;
+    p = as_blank(p, e, line);
+    const char *r = p;
+    if (p >= e || !(*p == '-' || *p == '.' || (*p >= '0' && *p <= '9')))
+        return NULL;
+    while (p < e && is_number_char((unsigned char)*p))
+        p++;
+    size_t len = (size_t)(p - r);
+    if (p >= e || !(is_blank((unsigned char)*p) || *p == ')') || len >= 128 || (len == 1 && *r == '-'))
+        return NULL;
     int neg = r[0] == '-';
     int aslabel = r[0] != '.' && len > (size_t)neg;
     for (size_t k = 1; k < len && aslabel; k++)
         aslabel = r[k] >= '0' && r[k] <= '9';
     if (aslabel) {
         if (len - (size_t)neg > 18)
-            return 0;
+            return NULL;
         int64_t x = 0;
         for (size_t k = (size_t)neg; k < len; k++)
             x = x * 10 + (r[k] - '0');
@@ -694,30 +680,9 @@ static int as_scalar(ascii_scan *s, double *v)
         char *endp;
         *v = strtod(nb, &endp);
         if (endp != nb + len)
-            return 0; /* a word to the token reader */
+            return NULL; /* a word to the token reader */
     }
-    s->i = i;
-    return 1;
-}
-
-/* Growable int64 array handed to the arena at the end. */
-typedef struct as_vec {
-    int64_t *v;
-    size_t n, cap;
-} as_vec;
-
-static int as_push(as_vec *a, int64_t x)
-{
-    if (a->n == a->cap) {
-        size_t nc = a->cap ? 2 * a->cap : 1024;
-        int64_t *q = ump_realloc_array(a->v, nc, sizeof *q);
-        if (!q)
-            return 0;
-        a->v = q;
-        a->cap = nc;
-    }
-    a->v[a->n++] = x;
-    return 1;
+    return p;
 }
 
 static void as_free(void *p) { free(p); }
@@ -739,73 +704,82 @@ ump_status foam_lex_ascii_list(foam_lexer *lx, int shape, foam_token out[2], int
 {
     *nout = 0;
     if (!lx->has_back || lx->back.type != FOAM_TOK_LABEL || lx->back.v.label <= 0 ||
-        lx->back.v.label > UMP_IDX_MAX)
+        lx->back.v.label > UMP_IDX_MAX || shape < FOAM_ASCII_LABELS || shape > FOAM_ASCII_FACES)
         return UMP_OK;
     size_t n = (size_t)lx->back.v.label;
-    ascii_scan s = {lx->buf, lx->len, lx->pos, lx->line};
-    /* every item takes at least two characters: a larger count is cut short */
-    if (n > (s.n - s.i) / 2 || !as_char(&s, '('))
+    const char *p = lx->buf + lx->pos, *e = lx->buf + lx->len;
+    int line = lx->line;
+    /* an item takes at least two characters: a larger count is cut short */
+    size_t most = (size_t)(e - p) / 2 + 1;
+    if (n > most || !(p = as_char(p, e, &line, '(')))
         return UMP_OK;
-    as_vec a = {0}, b = {0};
-    int ok = 1, mem = 1;
+    /* exact sizes, but for the labels of faces: at most one per two
+     * characters (untouched pages cost nothing), shrunk at the end */
+    size_t na = shape == FOAM_ASCII_VECTORS ? 3 * n : shape == FOAM_ASCII_FACES ? n + 1 : n;
+    size_t nb = shape == FOAM_ASCII_FACES ? most : 0;
+    int64_t *a = ump_realloc_array(NULL, na, sizeof *a), *b = NULL;
+    if (!a || (nb && !(b = ump_realloc_array(NULL, nb, sizeof *b)))) {
+        free(a);
+        return nomem(lx);
+    }
+    size_t nitem = 0;
     if (shape == FOAM_ASCII_LABELS) {
-        for (size_t k = 0; ok && k < n; k++) {
-            int64_t v;
-            ok = as_label(&s, ")", &v) && (mem = as_push(&a, v));
-        }
+        for (size_t k = 0; p && k < n; k++)
+            p = as_label(p, e, &line, ')', &a[k]);
     } else if (shape == FOAM_ASCII_VECTORS) {
-        for (size_t k = 0; ok && k < n; k++) {
-            double x[3];
-            ok = as_char(&s, '(') && as_scalar(&s, &x[0]) && as_scalar(&s, &x[1]) &&
-                 as_scalar(&s, &x[2]) && as_char(&s, ')');
-            for (int c = 0; ok && c < 3; c++) {
-                int64_t bits;
-                memcpy(&bits, &x[c], sizeof bits); /* doubles kept in the int64 buffer */
-                ok = mem = as_push(&a, bits);
-            }
-        }
-    } else if (shape == FOAM_ASCII_FACES) {
-        ok = mem = as_push(&a, 0) && as_push(&b, 0); /* b: never NULL */
-        b.n = 0;
-        for (size_t k = 0; ok && k < n; k++) {
-            int64_t m;
-            ok = as_label(&s, "(", &m) && as_char(&s, '(');
-            for (int64_t j = 0; ok && j < m; j++) {
-                int64_t v;
-                ok = as_label(&s, ")", &v) && (mem = as_push(&b, v));
-            }
-            ok = ok && as_char(&s, ')') && b.n <= (size_t)UMP_IDX_MAX &&
-                 (mem = as_push(&a, (int64_t)b.n));
+        double x[3];
+        for (size_t k = 0; p && k < n; k++) {
+            if ((p = as_char(p, e, &line, '(')) && (p = as_scalar(p, e, &line, &x[0])) &&
+                (p = as_scalar(p, e, &line, &x[1])) && (p = as_scalar(p, e, &line, &x[2])) &&
+                (p = as_char(p, e, &line, ')')))
+                memcpy(&a[3 * k], x, sizeof x); /* doubles kept in the int64 buffer */
         }
     } else {
-        ok = 0;
+        a[0] = 0;
+        for (size_t k = 0; p && k < n; k++) {
+            int64_t m;
+            if (!(p = as_label(p, e, &line, '(', &m)) || !(p = as_char(p, e, &line, '(')) ||
+                (uint64_t)m > nb - nitem)
+                p = NULL;
+            for (int64_t j = 0; p && j < m; j++)
+                p = as_label(p, e, &line, ')', &b[nitem++]);
+            if (p && (p = as_char(p, e, &line, ')')))
+                a[k + 1] = (int64_t)nitem;
+        }
+        if (p && nitem > (size_t)UMP_IDX_MAX)
+            p = NULL;
     }
-    ok = ok && as_char(&s, ')');
-    if (!ok) {
-        free(a.v);
-        free(b.v);
-        return mem ? UMP_OK : nomem(lx);
+    if (p)
+        p = as_char(p, e, &line, ')');
+    if (!p) {
+        free(a);
+        free(b);
+        return UMP_OK;
+    }
+    if (b) {
+        int64_t *q = ump_realloc_array(b, nitem ? nitem : 1, sizeof *b);
+        if (q)
+            b = q;
     }
     /* a failed adopt frees its block */
-    if (!foam_arena_adopt(lx->arena, a.v, as_free)) {
-        free(b.v);
+    if (!foam_arena_adopt(lx->arena, a, as_free)) {
+        free(b);
         return nomem(lx);
     }
-    if (b.v && !foam_arena_adopt(lx->arena, b.v, as_free))
+    if (b && !foam_arena_adopt(lx->arena, b, as_free))
         return nomem(lx);
-    int line = lx->back.line;
+    int l0 = lx->back.line;
     if (shape == FOAM_ASCII_FACES) {
-        as_blob(&out[0], lx, line, n + 1, 1, 1, a.v);
-        as_blob(&out[1], lx, line, b.n, 1, 1, b.v);
+        as_blob(&out[0], lx, l0, n + 1, 1, 1, a);
+        as_blob(&out[1], lx, l0, nitem, 1, 1, b);
         *nout = 2;
     } else {
-        as_blob(&out[0], lx, line, n, shape == FOAM_ASCII_VECTORS ? 3 : 1,
-                shape == FOAM_ASCII_LABELS, a.v);
+        as_blob(&out[0], lx, l0, n, shape == FOAM_ASCII_VECTORS ? 3 : 1, shape == FOAM_ASCII_LABELS, a);
         *nout = 1;
     }
     lx->has_back = 0;
-    lx->pos = s.i;
-    lx->line = s.line;
+    lx->pos = (size_t)(p - lx->buf);
+    lx->line = line;
     return UMP_OK;
 }
 
