@@ -230,6 +230,18 @@ void lsolve_mat_mult(const lsolve_mat *A, const double *restrict x, double *rest
     }
 }
 
+void lsolve_mat_mult_sym(const lsolve_mat *A, const double *restrict x, double *restrict y)
+{
+    ump_idx n = A->n;
+#pragma omp parallel for schedule(static) if (n > 4096)
+    for (ump_idx i = 0; i < n; i++) {
+        double s = 0.0; /* rows of column i ascending: lsolve_mat_mult's order */
+        for (ump_idx p = A->Ap[i]; p < A->Ap[i + 1]; p++)
+            s += A->Ax[p] * x[A->Ai[p]];
+        y[i] = s;
+    }
+}
+
 /* Position of row i in column j (rows sorted), -1 if absent. */
 static ump_idx find_entry(const lsolve_mat *A, ump_idx i, ump_idx j)
 {

@@ -317,6 +317,7 @@ ump_status ppe_create(const mesh2d *m, const lsq_grad *g, const unsigned char *d
         goto fail;
     if (!P->has_dirichlet && (rc = fix_reference(P, err)) != UMP_OK)
         goto fail;
+    P->symmetric = lsolve_mat_is_symmetric(P->A, 0.0);
     rc = lsolve_factor(P->A, o->solver, &P->fac, err);
     if (rc != UMP_OK) {
         char msg[sizeof err->msg];
@@ -352,7 +353,10 @@ static ump_status residual(ppe *P, const double *b, const double *x, double *out
             for (ump_idx k = A->Ap[j]; k < A->Ap[j + 1]; k++)
                 P->rowsum[A->Ai[k]] += A->Ax[k];
     }
-    lsolve_mat_mult(P->A, x, P->ax);
+    if (P->symmetric)
+        lsolve_mat_mult_sym(P->A, x, P->ax);
+    else
+        lsolve_mat_mult(P->A, x, P->ax);
     double xbar = 0;
     for (ump_idx i = 0; i < n; i++)
         xbar += x[i];
@@ -402,6 +406,7 @@ ump_status ppe_solve(ppe *P, const double *flux, double dt, const double *pf, do
 void ppe_face_gradient_flux(const ppe *P, const double *p, const double *pf, double *gflux)
 {
     const mesh2d *m = P->m;
+#pragma omp parallel for schedule(static) if (m->nfaces > 4096)
     for (ump_idx f = 0; f < m->nfaces; f++) {
         double s = 0.0;
         for (ump_idx k = P->fop_off[f]; k < P->fop_off[f + 1]; k++)

@@ -930,6 +930,20 @@ static ump_status grow_particle_work(sol_state *st, size_t n, ump_err *err)
 
 /* ---- creation -------------------------------------------------------------- */
 
+/* Steps 1-4 beside the PPE: the particle stencils, the boundary particles
+ * and the particles seeded at the centroids, sorted by cell. */
+static ump_status particles_build(sol_setup *su, sol_state *st, ump_err *err)
+{
+    const mesh2d *m = su->m;
+    UMP_CALL(stencil_build(su, err));
+    UMP_CALL(owned_faces_build(su, err));
+    UMP_CALL(part_boundary_create(&st->bp, m, err));
+    UMP_CALL(part_create((size_t)m->ncells * 2, &st->P, err));
+    UMP_CALL(part_seed_centroids(st->P, m, st->uc, st->vc, st->Tc, err));
+    UMP_CALL(part_sort_by_cell(st->P, &st->bins, m, err));
+    return grow_particle_work(st, st->P->n, err);
+}
+
 ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U, const fld_field *pfld,
                       const fld_field *T, sol **out, ump_err *err)
 {
@@ -1007,15 +1021,27 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
                       (long)s->p_ref_cell, (long)nc - 1);
         goto fail;
     }
-    if ((rc = lsq_build(m, &su->g, err)) != UMP_OK ||
-        (rc = ppe_create(m, su->g, su->p_dir, &po, &su->pe, err)) != UMP_OK ||
-        (rc = stencil_build(su, err)) != UMP_OK || (rc = owned_faces_build(su, err)) != UMP_OK ||
-        (rc = part_boundary_create(&st->bp, m, err)) != UMP_OK ||
-        (rc = part_create((size_t)nc * 2, &st->P, err)) != UMP_OK ||
-        (rc = part_seed_centroids(st->P, m, st->uc, st->vc, st->Tc, err)) != UMP_OK ||
-        (rc = part_sort_by_cell(st->P, &st->bins, m, err)) != UMP_OK ||
-        (rc = grow_particle_work(st, st->P->n, err)) != UMP_OK ||
-        (rc = lsolve_rows_create(&st->kry, err)) != UMP_OK)
+    if ((rc = lsq_build(m, &su->g, err)) != UMP_OK)
+        goto fail;
+    /* The PPE factorization (serial, the largest part of the set-up) beside
+     * the particle stencils and the seeding, which do not need it; a
+     * failure is reported as the serial order would (the PPE's first). */
+    ump_status rp = UMP_OK, rs = UMP_OK;
+    ump_err ep, es;
+#pragma omp parallel sections num_threads(2) if (sol_threads() > 1)
+    {
+#pragma omp section
+        rp = ppe_create(m, su->g, su->p_dir, &po, &su->pe, &ep);
+#pragma omp section
+        rs = particles_build(su, st, &es);
+    }
+    if (rp != UMP_OK || rs != UMP_OK) {
+        rc = rp != UMP_OK ? rp : rs;
+        if (err)
+            *err = rp != UMP_OK ? ep : es;
+        goto fail;
+    }
+    if ((rc = lsolve_rows_create(&st->kry, err)) != UMP_OK)
         goto fail;
     for (int t = 0; t < S->nthreads; t++)
         if ((rc = work_reserve(&S->work[t], 4 * (size_t)su->st_max + 64, err)) != UMP_OK)

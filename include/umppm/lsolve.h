@@ -51,6 +51,10 @@ ump_status lsolve_mat_from_csr(lsolve_mat *A, size_t *cap, ump_idx n, const ump_
                                const ump_idx *col, const double *val, ump_err *err);
 /* y = A x */
 void lsolve_mat_mult(const lsolve_mat *A, const double *x, double *y);
+/* y = A x for A equal to its transpose (pattern and values): y_i is
+ * column i dotted with x, rows in parallel (OpenMP) -- the same products
+ * summed in the same order as lsolve_mat_mult, so the same bits. */
+void lsolve_mat_mult_sym(const lsolve_mat *A, const double *x, double *y);
 /* 1 if A equals its transpose to within tol * max|A_ij| */
 int lsolve_mat_is_symmetric(const lsolve_mat *A, double tol);
 

@@ -71,6 +71,7 @@ typedef struct ppe {
      * and after it */
     double res0, res;
     double *ax, *rowsum;      /* [ncells] workspace, row sums of A (NULL until used) */
+    int symmetric;            /* A equals its transpose: products by lsolve_mat_mult_sym */
 } ppe;
 
 /* dirichlet [m->nfaces] (may be NULL: none) marks faces with prescribed p

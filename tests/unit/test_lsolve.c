@@ -356,6 +356,47 @@ static void test_cholmod_lanes(void **state)
 }
 
 /* new values on the same pattern; a different pattern is refused */
+/* The symmetric product (rows in parallel) gives lsolve_mat_mult's bits on
+ * 1 and 2 threads: a 90x90 Laplacian (n = 8100 > the parallel threshold)
+ * with random symmetric values and random x. */
+static void test_mult_sym(void **state)
+{
+    (void)state;
+    int m = 90, n = m * m;
+    lsolve_mat *A = laplacian(m, -1, 0.0);
+    rng r = {4242};
+    for (ump_idx j = 0; j < A->n; j++)
+        for (ump_idx p = A->Ap[j]; p < A->Ap[j + 1]; p++) {
+            ump_idx i = A->Ai[p];
+            if (i > j)
+                continue;
+            double v = rnd(&r) - 0.5; /* the same value at (i, j) and (j, i) */
+            A->Ax[p] = v;
+            for (ump_idx q = A->Ap[i]; q < A->Ap[i + 1]; q++)
+                if (A->Ai[q] == j)
+                    A->Ax[q] = v;
+        }
+    assert_true(lsolve_mat_is_symmetric(A, 0.0));
+    double *x = malloc(sizeof(double) * n), *y0 = malloc(sizeof(double) * n),
+           *y1 = malloc(sizeof(double) * n), *y2 = malloc(sizeof(double) * n);
+    for (int i = 0; i < n; i++)
+        x[i] = rnd(&r) * 100.0 - 50.0;
+    lsolve_mat_mult(A, x, y0);
+    int nt = omp_get_max_threads();
+    omp_set_num_threads(1);
+    lsolve_mat_mult_sym(A, x, y1);
+    omp_set_num_threads(2);
+    lsolve_mat_mult_sym(A, x, y2);
+    omp_set_num_threads(nt);
+    assert_memory_equal(y0, y1, sizeof(double) * (size_t)n);
+    assert_memory_equal(y0, y2, sizeof(double) * (size_t)n);
+    free(x);
+    free(y0);
+    free(y1);
+    free(y2);
+    lsolve_mat_free(&A);
+}
+
 static void test_refactor(void **state)
 {
     (void)state;
@@ -963,6 +1004,7 @@ int main(void)
         cmocka_unit_test(test_rows_lockstep),
         cmocka_unit_test(test_from_csr_fluctuating),
         cmocka_unit_test(test_out_of_memory),
+        cmocka_unit_test(test_mult_sym),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
