@@ -80,13 +80,13 @@ integration: $(APP) $(TOOLS) $(BUILD)/geomcheck $(BUILD)/write_cavity_fields $(B
 
 # The LD_PRELOAD shim of test_nothing_lost.sh (SIGKILL at the k-th write
 # call): a plain shared object, never sanitized (it is preloaded).
-$(BUILD)/killshim.so: tests/integration/killshim.c
+$(BUILD)/killshim.so: tests/integration/killshim.c tests/integration/shim.h
 	@mkdir -p $(dir $@)
 	$(CC) -shared -fPIC -std=c11 -Wall -Wextra -Wpedantic $(WERROR) -O2 -o $@ $< -ldl
 
 # The LD_PRELOAD shim of test_runtime_modifiable.sh (renames a prepared
 # controlDict over the case's when a chosen time directory is made).
-$(BUILD)/editshim.so: tests/integration/editshim.c
+$(BUILD)/editshim.so: tests/integration/editshim.c tests/integration/shim.h
 	@mkdir -p $(dir $@)
 	$(CC) -shared -fPIC -std=c11 -Wall -Wextra -Wpedantic $(WERROR) -O2 -o $@ $< -ldl
 

@@ -20,7 +20,6 @@
  * A rename that fails aborts the process (the test then fails loudly).
  */
 #define _GNU_SOURCE
-#include <dlfcn.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,6 +27,8 @@
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <unistd.h>
+
+#include "shim.h"
 
 #define MAX_EDITS 16
 
@@ -38,13 +39,6 @@ static struct {
 } edits[MAX_EDITS];
 static int nedits;
 static const char *target;
-
-static void die(const char *msg)
-{
-    ssize_t w = write(2, msg, strlen(msg));
-    (void)w;
-    abort();
-}
 
 __attribute__((constructor)) static void shim_init(void)
 {
@@ -57,7 +51,7 @@ __attribute__((constructor)) static void shim_init(void)
     for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok; tok = strtok_r(NULL, " ", &save)) {
         char *eq = strchr(tok, '=');
         if (!eq || nedits == MAX_EDITS || (size_t)(eq - tok) >= sizeof edits[0].time)
-            die("editshim: UMPPM_EDIT_AT must be \"T=SRC ...\" (at most 16)\n");
+            shim_die("editshim: UMPPM_EDIT_AT must be \"T=SRC ...\" (at most 16)\n");
         memcpy(edits[nedits].time, tok, (size_t)(eq - tok));
         edits[nedits].time[eq - tok] = '\0';
         snprintf(edits[nedits].src, sizeof edits[nedits].src, "%s", eq + 1);
@@ -78,25 +72,16 @@ static int is_time_dir(const char *path, const char *t)
 
 typedef int (*mkdir_fn)(const char *, mode_t);
 
-/* umppmFoam writes a time's fields and cloud from two threads: one lock */
-static pthread_mutex_t lk = PTHREAD_MUTEX_INITIALIZER;
-
 int mkdir(const char *path, mode_t mode)
 {
-    static mkdir_fn real_mkdir;
-    pthread_mutex_lock(&lk);
-    if (!real_mkdir) {
-        void *p = dlsym(RTLD_NEXT, "mkdir");
-        if (!p)
-            die("editshim: dlsym(mkdir) failed\n");
-        memcpy(&real_mkdir, &p, sizeof p); /* no object-to-function cast in ISO C */
-    }
+    SHIM_NEXT(mkdir_fn, mkdir);
+    pthread_mutex_lock(&shim_lock);
     for (int i = 0; i < nedits; i++)
         if (!edits[i].done && is_time_dir(path, edits[i].time)) {
             edits[i].done = 1;
             if (rename(edits[i].src, target) != 0)
-                die("editshim: rename of the prepared file over the target failed\n");
+                shim_die("editshim: rename of the prepared file over the target failed\n");
         }
-    pthread_mutex_unlock(&lk);
+    pthread_mutex_unlock(&shim_lock);
     return real_mkdir(path, mode);
 }

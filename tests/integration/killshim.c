@@ -17,7 +17,6 @@
  *                            writer's two-rename fallback)
  */
 #define _GNU_SOURCE
-#include <dlfcn.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <pthread.h>
@@ -30,14 +29,13 @@
 #include <sys/types.h>
 #include <unistd.h>
 
+#include "shim.h"
+
 #ifndef RENAME_EXCHANGE
 #define RENAME_EXCHANGE (1 << 1)
 #endif
 
-/* umppmFoam writes the fields and the cloud of a time from two threads:
- * the counter, the FILE table and the lazy look-ups are under one lock */
-static pthread_mutex_t lk = PTHREAD_MUTEX_INITIALIZER;
-static long count, kill_at;
+static long count, kill_at; /* under shim_lock, with the FILE table */
 static int no_exchange;
 static FILE *writing[256]; /* FILEs opened for writing (fclose is counted) */
 
@@ -47,29 +45,6 @@ __attribute__((constructor)) static void shim_init(void)
     kill_at = k ? atol(k) : 0;
     no_exchange = x && *x == '1';
 }
-
-/* the next definition of name after this library */
-static void *next(const char *name)
-{
-    void *p = dlsym(RTLD_NEXT, name);
-    if (!p) {
-        static const char msg[] = "killshim: dlsym failed\n";
-        ssize_t w = write(2, msg, sizeof msg - 1);
-        (void)w;
-        abort();
-    }
-    return p;
-}
-/* real_<name>: the function this shim hides (function pointer from dlsym
- * through memcpy: ISO C has no object-to-function pointer conversion) */
-#define NEXT(type, name) \
-    static type real_##name; \
-    pthread_mutex_lock(&lk); \
-    if (!real_##name) { \
-        void *p_ = next(#name); \
-        memcpy(&real_##name, &p_, sizeof p_); \
-    } \
-    pthread_mutex_unlock(&lk);
 
 typedef int (*open_fn)(const char *, int, ...);
 typedef int (*path_fn)(const char *);
@@ -84,7 +59,7 @@ __attribute__((destructor)) static void shim_fini(void)
     const char *f = getenv("UMPPM_KILL_COUNT");
     if (!f || !*f)
         return;
-    NEXT(open_fn, open);
+    SHIM_NEXT(open_fn, open);
     char buf[32];
     int n = snprintf(buf, sizeof buf, "%ld\n", count);
     int fd = real_open(f, O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -97,11 +72,11 @@ __attribute__((destructor)) static void shim_fini(void)
 
 static void tick(void)
 {
-    pthread_mutex_lock(&lk);
+    pthread_mutex_lock(&shim_lock);
     count++;
     if (kill_at > 0 && count == kill_at)
         kill(getpid(), SIGKILL);
-    pthread_mutex_unlock(&lk);
+    pthread_mutex_unlock(&shim_lock);
 }
 
 static int for_writing(int flags)
@@ -116,67 +91,67 @@ static int mode_writes(const char *mode)
 
 static void remember(FILE *fp)
 {
-    pthread_mutex_lock(&lk);
+    pthread_mutex_lock(&shim_lock);
     for (size_t i = 0; fp && i < sizeof writing / sizeof writing[0]; i++)
         if (!writing[i]) {
             writing[i] = fp;
             break;
         }
-    pthread_mutex_unlock(&lk);
+    pthread_mutex_unlock(&shim_lock);
 }
 
 static int forget(FILE *fp)
 {
     int found = 0;
-    pthread_mutex_lock(&lk);
+    pthread_mutex_lock(&shim_lock);
     for (size_t i = 0; fp && i < sizeof writing / sizeof writing[0]; i++)
         if (writing[i] == fp) {
             writing[i] = NULL;
             found = 1;
             break;
         }
-    pthread_mutex_unlock(&lk);
+    pthread_mutex_unlock(&shim_lock);
     return found;
 }
 
 int mkdir(const char *path, mode_t mode)
 {
-    NEXT(mkdir_fn, mkdir);
+    SHIM_NEXT(mkdir_fn, mkdir);
     tick();
     return real_mkdir(path, mode);
 }
 
 int rmdir(const char *path)
 {
-    NEXT(path_fn, rmdir);
+    SHIM_NEXT(path_fn, rmdir);
     tick();
     return real_rmdir(path);
 }
 
 int unlink(const char *path)
 {
-    NEXT(path_fn, unlink);
+    SHIM_NEXT(path_fn, unlink);
     tick();
     return real_unlink(path);
 }
 
 int remove(const char *path)
 {
-    NEXT(path_fn, remove);
+    SHIM_NEXT(path_fn, remove);
     tick();
     return real_remove(path);
 }
 
 int rename(const char *from, const char *to)
 {
-    NEXT(rename_fn, rename);
+    SHIM_NEXT(rename_fn, rename);
     tick();
     return real_rename(from, to);
 }
 
 int renameat2(int fd1, const char *from, int fd2, const char *to, unsigned int flags)
 {
-    NEXT(renameat2_fn, renameat2);
+    SHIM_NEXT(renameat2_fn, renameat2);
     tick();
     if (no_exchange && (flags & RENAME_EXCHANGE)) {
         errno = EINVAL;
@@ -187,7 +162,7 @@ int renameat2(int fd1, const char *from, int fd2, const char *to, unsigned int f
 
 int open(const char *path, int flags, ...)
 {
-    NEXT(open_fn, open);
+    SHIM_NEXT(open_fn, open);
     mode_t mode = 0;
     if (flags & O_CREAT) {
         va_list ap;
@@ -202,7 +177,7 @@ int open(const char *path, int flags, ...)
 
 int open64(const char *path, int flags, ...)
 {
-    NEXT(open_fn, open64);
+    SHIM_NEXT(open_fn, open64);
     mode_t mode = 0;
     if (flags & O_CREAT) {
         va_list ap;
@@ -217,7 +192,7 @@ int open64(const char *path, int flags, ...)
 
 FILE *fopen(const char *path, const char *mode)
 {
-    NEXT(fopen_fn, fopen);
+    SHIM_NEXT(fopen_fn, fopen);
     int w = mode_writes(mode);
     if (w)
         tick();
@@ -229,7 +204,7 @@ FILE *fopen(const char *path, const char *mode)
 
 FILE *fopen64(const char *path, const char *mode)
 {
-    NEXT(fopen_fn, fopen64);
+    SHIM_NEXT(fopen_fn, fopen64);
     int w = mode_writes(mode);
     if (w)
         tick();
@@ -241,7 +216,7 @@ FILE *fopen64(const char *path, const char *mode)
 
 int fclose(FILE *fp)
 {
-    NEXT(fclose_fn, fclose);
+    SHIM_NEXT(fclose_fn, fclose);
     if (forget(fp))
         tick();
     return real_fclose(fp);
