@@ -25,7 +25,7 @@ const foam_entry *foam_dict_find(const foam_dict *d, const char *key, int recurs
                 return &d->e[i];
         /* patterns: the latest definition wins, as in OpenFOAM */
         for (size_t i = d->n; i-- > 0;)
-            if (d->e[i].is_pattern && foam_pattern_match(d->e[i].key, key))
+            if (d->e[i].is_pattern && foam_entry_match(&d->e[i], key))
                 return &d->e[i];
     }
     return NULL;

@@ -99,4 +99,8 @@ char *foam_resolve_gz(const char *path);
 int foam_list_type_ncomp(const char *word, int *is_label);
 /* POSIX-extended whole-string match of key against pattern (1/0). */
 int foam_pattern_match(const char *pattern, const char *key);
+/* The same for the key of pattern entry e, with its compiled regex when the
+ * reader made one (a fuzzed dictionary spent 99 % of its parse compiling
+ * the same patterns again for every $variable look-up). */
+int foam_entry_match(const foam_entry *e, const char *key);
 #endif

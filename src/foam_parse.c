@@ -163,6 +163,28 @@ static int rebuild_index(parser *p, foam_dict_impl *di)
 }
 
 /* Append without checking for an existing key. */
+static void free_regex(void *q)
+{
+    regfree(q);
+    free(q);
+}
+
+/* A pattern key compiled once, kept with the file (e->rx); left NULL when
+ * it cannot be compiled (it then matches nothing, as before) or memory is
+ * short (it is then compiled at each match). */
+static void compile_key(parser *p, foam_entry *e)
+{
+    if (!e->is_pattern || e->rx)
+        return;
+    regex_t *rx = ump_alloc_array(1, sizeof *rx);
+    if (rx && pattern_compile(e->key, rx)) {
+        if (foam_arena_adopt(p->a, rx, free_regex))
+            e->rx = rx;
+        return;
+    }
+    free(rx);
+}
+
 static ump_status dict_append(parser *p, foam_dict *d, const foam_entry *e)
 {
     foam_dict_impl *di = (foam_dict_impl *)d;
@@ -178,7 +200,9 @@ static ump_status dict_append(parser *p, foam_dict *d, const foam_entry *e)
         d->e = ne;
         d->cap = nc;
     }
-    d->e[d->n++] = *e;
+    d->e[d->n] = *e;
+    compile_key(p, &d->e[d->n]);
+    d->n++;
     if (e->is_pattern)
         di->npat++;
     if (di->hcap && d->n * 2 <= di->hcap) {
@@ -215,6 +239,7 @@ static ump_status dict_add(parser *p, foam_dict *d, foam_entry *e)
     di->npat += (size_t)e->is_pattern;
     if (e->dict)
         e->dict->parent = d;
+    compile_key(p, e);
     *old = *e;
     return UMP_OK;
 }
@@ -299,7 +324,7 @@ static const foam_entry *find_var_n(const foam_dict *d, const char *s, size_t n,
             memcpy(key, s, n);
             key[n] = '\0';
             for (size_t k = d->n; k-- > 0;)
-                if (d->e[k].is_pattern && foam_pattern_match(d->e[k].key, key))
+                if (d->e[k].is_pattern && foam_entry_match(&d->e[k], key))
                     return &d->e[k];
         }
     }
@@ -1556,6 +1581,13 @@ static int pattern_compile(const char *pattern, regex_t *rx)
     int ok = regcomp(rx, re, REG_EXTENDED | REG_NOSUB) == 0;
     free(re);
     return ok;
+}
+
+int foam_entry_match(const foam_entry *e, const char *key)
+{
+    if (e->rx)
+        return regexec(e->rx, key, 0, NULL, 0) == 0;
+    return foam_pattern_match(e->key, key);
 }
 
 int foam_pattern_match(const char *pattern, const char *key)

@@ -116,6 +116,8 @@ typedef struct foam_token {
 typedef struct foam_entry {
     char *key;
     int is_pattern;        /* key was "quoted": a POSIX extended regex */
+    const void *rx;         /* that regex compiled once by the reader (owned by
+                               the foam_file), or NULL: compiled at each match */
     int line;
     const char *file;
     struct foam_dict *dict; /* non-NULL: sub-dictionary entry */
