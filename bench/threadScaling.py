@@ -10,7 +10,8 @@ once (s)") and the wall seconds of every stage of the log's "Time by stage"
 table, for 1 and 2 threads and their ratio. Several -umppm binaries (e.g. an
 older revision) are timed in turn within each repetition, so they see the
 same machine. The minimum over runs, because this VM's wall times are noisy
-upwards (README, "Speed and threads").
+upwards (README, "Speed and threads"); then the median whole-run wall times
+and their ratio, and the ratio of each alternating 1/2-thread pair.
 
 Example (the 160^2 cavity of bench/vsOpenFOAM.sh):
   bench/vsOpenFOAM.sh -cases cavity160 -work /tmp/vs
@@ -19,6 +20,7 @@ Example (the 160^2 cavity of bench/vsOpenFOAM.sh):
 import os
 import re
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -70,10 +72,13 @@ def main():
     copy = os.path.join(work, 'case')
     shutil.copytree(case, copy)
     best = {b: {1: {}, 2: {}} for b in bins}
+    walls = {b: {1: [], 2: []} for b in bins}
     for _ in range(n):
         for b in bins:
             for t in (1, 2):
-                for k, v in run(b, copy, t).items():
+                r = run(b, copy, t)
+                walls[b][t].append(r['wall (whole run)'])
+                for k, v in r.items():
                     best[b][t][k] = min(best[b][t].get(k, v), v)
     shutil.rmtree(work)
     for b in bins:
@@ -81,6 +86,11 @@ def main():
         for k, v1 in best[b][1].items():
             v2 = best[b][2].get(k, 0.0)
             print('%-36s %8.3f %8.3f %6.2f' % (k, v1, v2, v1 / v2 if v2 > 0 else 0.0))
+        w1, w2 = walls[b][1], walls[b][2]
+        print('%-36s %8.3f %8.3f %6.2f' % ('wall (whole run), median', statistics.median(w1),
+                                          statistics.median(w2), statistics.median(w1) / statistics.median(w2)))
+        print('# whole-run ratio of each alternating pair: %s' %
+              ' '.join('%.2f' % (a / c) for a, c in zip(w1, w2)))
 
 
 if __name__ == '__main__':
