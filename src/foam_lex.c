@@ -687,6 +687,7 @@ static const char *as_scalar(const char *p, const char *e, int *line, double *v)
 
 static void as_free(void *p) { free(p); }
 
+/* A FOAM_TOK_BLOB token (also for the binary lists below). */
 static void as_blob(foam_token *t, const foam_lexer *lx, int line, size_t n, int ncomp, int is_label,
                     void *data)
 {
@@ -810,12 +811,7 @@ ump_status foam_lex_blob(foam_lexer *lx, int64_t n, int ncomp, int is_label, int
     if (n < 0)
         return FOAM_FAIL(lx->err, UMP_ERR_PARSE, "%s:%d: negative list size %lld",
                         lx->file, line, (long long)n);
-    memset(out, 0, sizeof *out);
-    out->type = FOAM_TOK_BLOB;
-    out->file = lx->file;
-    out->line = line;
-    out->v.blob.ncomp = ncomp;
-    out->v.blob.is_label = is_label;
+    as_blob(out, lx, line, 0, ncomp, is_label, NULL);
     int c;
     UMP_CALL(foam_lex_peek_char(lx, &c));
     if (n == 0) {
