@@ -127,6 +127,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->pred_tol = a->um.pred_tol;
     s->pred_maxit = (int)a->um.pred_maxit;
     s->sort_interval = (int)a->um.sort_interval;
+    s->incremental = a->um.incremental;
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
     s->p_ref_value = a->so.p_ref_value;
     if (a->bu.on) {
@@ -1132,8 +1133,8 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     if (strcmp(a.um.laplacian, "CPM") != 0)
         printf(" (r_e = %g x spacing)", lap_re_factor(&(lap_params){(lap_model)lap_parse(a.um.laplacian),
                                                                    a.um.re_factor}));
-    printf(", PPE solver %s, predictor BiCGSTAB/%s tolerance %g\n", a.um.ppe_solver, a.um.pred_pc,
-           a.um.pred_tol);
+    printf(", %s splitting, PPE solver %s, predictor BiCGSTAB/%s tolerance %g\n",
+           a.um.incremental ? "incremental" : "standard", a.um.ppe_solver, a.um.pred_pc, a.um.pred_tol);
     printf("Time scheme: ddtSchemes %s; umppmFoam runs its first-order implicit UMPPM step (Eq. 14) "
            "for Euler and backward alike\n", a.ddt);
     printf("Threads: %d (OpenMP; set OMP_NUM_THREADS to change)\n\n", sol_threads());
@@ -1166,6 +1167,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     long step = 0;
     double cont_cumulative = 0;
     double stage_cpu[SOL_NSTAGES] = {0}, stage_wall[SOL_NSTAGES] = {0};
+    size_t run_left = 0, run_walled = 0; /* particles: over the run */
     if ((rc = fo_setup(&a, err)) != UMP_OK || (rc = run_functions(&a, &t, 0, tname, 0, err)) != UMP_OK)
         goto done;
     a.ctl_watch = a.ctl.run_time_modifiable;
@@ -1192,12 +1194,14 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         sol_stats st;
         if ((rc = sol_step(a.S, t.delta_t, &st, err)) != UMP_OK)
             goto done;
+        run_left += st.left;
+        run_walled += st.walled;
         for (int k = 0; k < SOL_NSTAGES; k++) {
             stage_cpu[k] += st.stage_cpu[k];
             stage_wall[k] += st.stage_wall[k];
         }
-        printf("Particles: %zu (added %zu, deleted %zu, left the domain %zu)\n", st.np, st.added,
-               st.deleted, st.left);
+        printf("Particles: %zu (added %zu, deleted %zu, left through outlets %zu, stopped at walls %zu)\n",
+               st.np, st.added, st.deleted, st.left, st.walled);
         for (int k = 0; k < (a.bu.on ? 3 : 2); k++)
             printf("BiCGSTAB:  Solving for %s, Initial residual = %g, Final residual = %g, "
                    "No Iterations %d\n", k == 2 ? "T" : a.m->ax[k] == 0 ? "Ux" : a.m->ax[k] == 1 ? "Uy" : "Uz",
@@ -1255,6 +1259,9 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
             printf("    %-34s %9.3f %9.3f %5.1f %%\n", sol_stage_name(k), stage_cpu[k], stage_wall[k],
                    tw > 0 ? 100 * stage_wall[k] / tw : 0.0);
         printf("    %-34s %9.3f %9.3f\n\n", "total", tc, tw);
+        /* walls stop particles (src/solver.c wall_stop): none is lost there */
+        printf("Particles over %ld steps: %zu left through outlets, %zu moves stopped at walls "
+               "(none lost through walls)\n\n", step, run_left, run_walled);
     }
     rc = UMP_OK;
 done:

@@ -65,8 +65,13 @@
  *     to 0.0117, so the per-particle fit (the paper's) stays.
  *   - A particle whose CPM moment matrix is singular (too few independent
  *     neighbours) gets the MPS Laplacian for that step (counted in stats).
- *   - Particles that cross a boundary face at r* or r^{n+1} are removed at
- *     the end of the step; the empty-cell refill then repopulates.
+ *   - A move (to r* or r^{n+1}) that crosses a wall (a face with a
+ *     prescribed velocity that is not outflow, a symmetry plane, a slip
+ *     wall) stops at the wall (wall_stop): the particle keeps its carried
+ *     velocity instead of being deleted and re-seeded by interpolation.
+ *     Particles that cross an open boundary face (outlets, pressure
+ *     inlets) are removed at the end of the step; the empty-cell refill
+ *     then repopulates.
  *   - Particles are re-sorted by cell after the management of every step
  *     (sortInterval), an O(N) gather from the bins: the particles of a cell
  *     are consecutive, stencil neighbours are near in memory, and the
@@ -167,6 +172,7 @@ typedef struct sol_state {
     /* mesh fields */
     double *p, *uc, *vc, *usc, *vsc, *flux, *gflux, *gx, *gy, *div;
     double *pf;                /* [nfaces] face pressure of fixed faces (pi) */
+    double *pold, *gflux0;     /* incremental: p^n [ncells], its face gradient flux [nfaces] */
     /* boundary values of this step per boundary face b = f - ninternal */
     double *ub, *vb;           /* prescribed velocity (fixed faces), inletValue,
                                   outletValue, or the tangential inflow velocity
@@ -176,6 +182,7 @@ typedef struct sol_state {
     /* per particle */
     size_t wcap;
     double *x0, *y0, *us, *vs, *rhs_u, *rhs_v, *Ts, *rhs_T;
+    double *gpx, *gpy;         /* incremental: grad p^n at the particles (r^n) */
     ump_idx *cell0;
     unsigned char *keep;
     /* predictor system I + dt nu L in rows */
@@ -304,7 +311,7 @@ void sol_free(sol **pS)
                    su->ru_sx, su->ru_sy, su->of_off, su->of_face, st->p, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
-                   st->av, st->cnt_cell};
+                   st->av, st->cnt_cell, st->pold, st->gflux0, st->gpx, st->gpy};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
     if (S->work)
@@ -905,7 +912,8 @@ static ump_status grow_particle_work(sol_state *st, size_t n, ump_err *err)
     if (n <= st->wcap)
         return UMP_OK;
     size_t c = n > 2 * st->wcap ? n : 2 * st->wcap;
-    double **arr[] = {&st->x0, &st->y0, &st->us, &st->vs, &st->rhs_u, &st->rhs_v, &st->Ts, &st->rhs_T};
+    double **arr[] = {&st->x0, &st->y0, &st->us, &st->vs, &st->rhs_u, &st->rhs_v, &st->Ts, &st->rhs_T,
+                      &st->gpx, &st->gpy};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
         double *q = ump_realloc_array(*arr[i], c, sizeof(double));
         if (!q)
@@ -960,13 +968,14 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     ump_status rc;
     if (!(S->work = ump_alloc_array((size_t)S->nthreads, sizeof *S->work)))
         goto nomem;
-    double **cellarr[] = {&st->p, &st->uc, &st->vc, &st->usc, &st->vsc, &st->gx, &st->gy, &st->div};
+    double **cellarr[] = {&st->p, &st->uc, &st->vc, &st->usc, &st->vsc, &st->gx, &st->gy, &st->div, &st->pold};
     for (size_t i = 0; i < sizeof cellarr / sizeof cellarr[0]; i++)
         if (!(*cellarr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
             goto nomem;
     if (!(st->cnt_cell = ump_alloc_array((size_t)nc, sizeof(ump_idx))) ||
         !(st->flux = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->gflux = ump_alloc_array((size_t)nf, sizeof(double))) ||
+        !(st->gflux0 = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->pf = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(su->p_dir = ump_alloc_array((size_t)nf, 1)) || !(su->u_kind = ump_alloc_array((size_t)nb, 1)) ||
         !(su->p_total = ump_alloc_array((size_t)nb, 1)) || !(su->p0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
@@ -1118,6 +1127,39 @@ void sol_set_pressure(sol *S, const double *p)
     memcpy(S->st.p, p, (size_t)S->su.m->ncells * sizeof *S->st.p);
 }
 
+/* grad p at every particle's position (P->x, P->y): the MLS derivative
+ * (Eqs. 33-34) of the centroid values p of the particle's cell and its N2
+ * stencil (Eq. 10's pressure gradient). Returns the count of fits that fell
+ * back from the quadratic basis. */
+static long particle_pressure_gradient(sol *S, const double *p, double *gxo, double *gyo)
+{
+    const sol_setup *su = &S->su;
+    const mesh2d *m = su->m;
+    const part_set *P = S->st.P;
+    size_t n = P->n;
+    long fb = 0;
+#pragma omp parallel num_threads(S->nthreads) reduction(+ : fb)
+    {
+        sol_work *w = &S->work[thread_id()];
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            ump_idx c = P->cell[i];
+            double x = P->x[i], y = P->y[i];
+            int nn = 0;
+            for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
+                ump_idx q = su->st_cell[a];
+                w->h[nn] = m->cx[q] + (su->st_sx ? su->st_sx[a] : 0) - x;
+                w->k[nn] = m->cy[q] + (su->st_sy ? su->st_sy[a] : 0) - y;
+                w->pv[nn++] = p[q];
+            }
+            if (mls_gradient(w->h, w->k, w->pv, nn, m->dx[c], m->dy[c], &gxo[i], &gyo[i], NULL) !=
+                MLS_QUADRATIC)
+                fb++;
+        }
+    }
+    return fb;
+}
+
 /* ---- Step 6: the implicit predictor ------------------------------------------ */
 
 /* Insertion sort of one row by column (only when particles are not sorted
@@ -1185,6 +1227,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
     double gx = buoyant ? set->g[m->ax[0]] : 0, gy = buoyant ? set->g[m->ax[1]] : 0;
     const lap_params mps = {LAP_MPS, 3.1};
     const part_boundary *bp = &st->bp;
+    int incr = set->incremental;
 #pragma omp parallel num_threads(S->nthreads)
     {
         sol_work *w = &S->work[thread_id()];
@@ -1245,8 +1288,10 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                 sort_row(ci + st->rp[i], av + st->rp[i], pos - st->rp[i]);
             /* Boussinesq source per unit mass, -beta (T^n - TRef) g (Eq. 4) */
             double b = buoyant ? -set->beta * (P->T[i] - set->t_ref) : 0;
-            st->rhs_u[i] = P->u[i] + dnu * bu + dt * b * gx;
-            st->rhs_v[i] = P->v[i] + dnu * bv + dt * b * gy;
+            /* incremental splitting: - dt grad p^n at r^n (step6_rows) */
+            double px = incr ? st->gpx[i] : 0, py = incr ? st->gpy[i] : 0;
+            st->rhs_u[i] = P->u[i] + dnu * bu + dt * (b * gx - px);
+            st->rhs_v[i] = P->v[i] + dnu * bv + dt * (b * gy - py);
             st->rhs_T[i] = P->T[i] + dkap * bT; /* Eq. 37 */
         }
     }
@@ -1304,20 +1349,90 @@ static ump_status step6_solve(sol *S, double dt, sol_stats *stats, ump_err *err)
 
 /* ---- Steps 7 and 10: moving particles ----------------------------------------- */
 
-/* Locate-and-keep, once for both moves: particle i goes to
- * (x0, y0) + dt (u, v), walking from cell0; if it leaves the domain it is
- * marked keep = 0 and stays where it was for the rest of the step. */
-static void move_particles(sol *S, const double *u, const double *v, double dt)
+/* A boundary face that a particle may not leave through: the velocity is
+ * prescribed there with no outward normal component (walls, moving walls,
+ * inlets), or it is a symmetry plane or slip wall. */
+static int is_wall_face(const sol_setup *su, const sol_state *st, ump_idx f)
 {
-    const mesh2d *m = S->su.m;
+    const mesh2d *m = su->m;
+    ump_idx b = f - m->ninternal;
+    if (su->u_kind[b] == BU_SYMMETRY)
+        return 1;
+    return su->u_kind[b] == BU_FIXED && st->ub[b] * m->nx[f] + st->vb[b] * m->ny[f] <= 0;
+}
+
+/* Wall stop (docs/METHOD.md section 8; the papers are silent): a move
+ * that crosses a wall face f ends on the fluid side of f, at the crossing
+ * point's projection onto f's line moved back by WALL_GAP of the owner
+ * centroid's distance to that line (the tangential part of the move is
+ * kept, the normal part stops at the wall). The gap keeps a stopped
+ * particle off the boundary particle at the face centre. The caller
+ * removes the velocity component into the wall and keeps the rest: the
+ * carried velocity survives, where deletion replaced it by an
+ * interpolated one. (Keeping the whole velocity was tried: a particle
+ * stopped in a lid corner was pushed in again every step and the 20 x 20
+ * Re 100 cavity with UMPPM diverged at t = 1.1.) At a corner the projected point can lie beyond a second
+ * wall: it is projected again (at most WALL_TRIES times), and failing
+ * that the particle stays at its start. Returns the cell. */
+#define WALL_GAP 0.1
+#define WALL_TRIES 3
+static ump_idx wall_stop(const sol_setup *su, const sol_state *st, ump_idx f, double *x, double *y,
+                         double x0, double y0, ump_idx cell0)
+{
+    const mesh2d *m = su->m;
+    for (int k = 0; k < WALL_TRIES; k++) {
+        ump_idx c = m->owner[f];
+        double d = (*x - m->fx[f]) * m->nx[f] + (*y - m->fy[f]) * m->ny[f];
+        double dcf = (m->fx[f] - m->cx[c]) * m->nx[f] + (m->fy[f] - m->cy[c]) * m->ny[f];
+        double s = (d > 0 ? d : 0) + WALL_GAP * dcf;
+        double px = *x - s * m->nx[f], py = *y - s * m->ny[f];
+        ump_idx cell, face;
+        part_where r = part_locate(m, c, &px, &py, &cell, &face);
+        if (r == PART_INSIDE) {
+            *x = px;
+            *y = py;
+            return cell;
+        }
+        if (r != PART_LEFT || !is_wall_face(su, st, face))
+            break;
+        *x = px;
+        *y = py;
+        f = face;
+    }
+    *x = x0;
+    *y = y0;
+    return cell0;
+}
+
+/* Locate-and-keep, once for both moves: particle i goes to
+ * (x0, y0) + dt (u, v), walking from cell0. A particle that crosses a wall
+ * is stopped at it (wall_stop; counted in *walled) and loses the part of
+ * (u, v) that points into the wall; one that leaves through
+ * an open boundary (outlet, pressure inlet) is marked keep = 0 and stays
+ * where it was for the rest of the step. */
+static void move_particles(sol *S, double *u, double *v, double dt, size_t *walled)
+{
+    const sol_setup *su = &S->su;
+    const mesh2d *m = su->m;
     sol_state *st = &S->st;
     part_set *P = st->P;
-    size_t n = P->n;
-#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+    size_t n = P->n, nw = 0;
+#pragma omp parallel for schedule(static) num_threads(S->nthreads) reduction(+ : nw)
     for (size_t i = 0; i < n; i++) {
         double x = st->x0[i] + dt * u[i], y = st->y0[i] + dt * v[i];
         ump_idx cell, face;
-        if (part_locate(m, st->cell0[i], &x, &y, &cell, &face) == PART_INSIDE) {
+        part_where r = part_locate(m, st->cell0[i], &x, &y, &cell, &face);
+        if (r == PART_LEFT && is_wall_face(su, st, face)) {
+            double un = u[i] * m->nx[face] + v[i] * m->ny[face];
+            if (un > 0) {
+                u[i] -= un * m->nx[face];
+                v[i] -= un * m->ny[face];
+            }
+            cell = wall_stop(su, st, face, &x, &y, st->x0[i], st->y0[i], st->cell0[i]);
+            r = PART_INSIDE;
+            nw++;
+        }
+        if (r == PART_INSIDE) {
             P->x[i] = x;
             P->y[i] = y;
             P->cell[i] = cell;
@@ -1325,10 +1440,11 @@ static void move_particles(sol *S, const double *u, const double *v, double dt)
             st->keep[i] = 0;
         }
     }
+    *walled += nw;
 }
 
 /* Step 7: r* = r^n + dt u* (Eq. 9), re-located and re-binned. */
-static ump_status step7_intermediate(sol *S, double dt, ump_err *err)
+static ump_status step7_intermediate(sol *S, double dt, size_t *walled, ump_err *err)
 {
     sol_state *st = &S->st;
     part_set *P = st->P;
@@ -1340,7 +1456,7 @@ static ump_status step7_intermediate(sol *S, double dt, ump_err *err)
         st->cell0[i] = P->cell[i];
         st->keep[i] = 1;
     }
-    move_particles(S, st->us, st->vs, dt);
+    move_particles(S, st->us, st->vs, dt, walled);
     return part_bins_build(&st->bins, S->su.m, P, err);
 }
 
@@ -1467,6 +1583,17 @@ static ump_status step9_pressure(sol *S, double dt, ump_err *err)
     const sol_setup *su = &S->su;
     sol_state *st = &S->st;
     const mesh2d *m = su->m;
+    if (su->set.incremental) {
+        /* incremental splitting: u* carries - dt grad p^n, so the face
+         * fluxes get + dt grad p^n back (the PPE's own face rows) and the
+         * solve gives p^{n+1} itself; the correction below removes
+         * dt grad p^{n+1}: net - dt grad (p^{n+1} - p^n) */
+        memcpy(st->pold, st->p, (size_t)m->ncells * sizeof *st->pold);
+        ppe_face_gradient_flux(su->pe, st->p, st->pf, st->gflux0);
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+        for (ump_idx f = 0; f < m->nfaces; f++)
+            st->flux[f] += dt * st->gflux0[f];
+    }
     /* Eqs. 20, 22-25, one solve with the factorization made at start-up */
     UMP_CALL(ppe_solve(su->pe, st->flux, dt, st->pf, st->p, err));
     ppe_face_gradient_flux(su->pe, st->p, st->pf, st->gflux);
@@ -1488,34 +1615,27 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
     size_t n = P->n;
     /* u^{n+1} = u* - dt grad p (Eq. 10), grad p at r* by the MLS
      * derivative (Eqs. 33-34) of the centroid pressures of the particle's
-     * cell and its N2 stencil */
-    long fb = 0;
-#pragma omp parallel num_threads(S->nthreads) reduction(+ : fb)
-    {
-        sol_work *w = &S->work[thread_id()];
-#pragma omp for schedule(static)
-        for (size_t i = 0; i < n; i++) {
-            ump_idx c = P->cell[i];
-            double x = P->x[i], y = P->y[i];
-            int nn = 0;
-            for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
-                ump_idx q = su->st_cell[a];
-                w->h[nn] = m->cx[q] + (su->st_sx ? su->st_sx[a] : 0) - x;
-                w->k[nn] = m->cy[q] + (su->st_sy ? su->st_sy[a] : 0) - y;
-                w->pv[nn++] = st->p[q];
-            }
-            double gx, gy;
-            if (mls_gradient(w->h, w->k, w->pv, nn, m->dx[c], m->dy[c], &gx, &gy, NULL) != MLS_QUADRATIC)
-                fb++;
-            P->u[i] = st->us[i] - dt * gx;
-            P->v[i] = st->vs[i] - dt * gy;
-        }
+     * cell and its N2 stencil; incremental: of p^{n+1} - p^n (kept in
+     * pold) */
+    const double *dp = st->p;
+    if (su->set.incremental) {
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+        for (ump_idx c = 0; c < nc; c++)
+            st->pold[c] = st->p[c] - st->pold[c];
+        dp = st->pold;
     }
-    stats->mls_fallbacks += (int)fb;
+    /* gpx/gpy are free after the predictor */
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, dp, st->gpx, st->gpy);
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+    for (size_t i = 0; i < n; i++) {
+        P->u[i] = st->us[i] - dt * st->gpx[i];
+        P->v[i] = st->vs[i] - dt * st->gpy[i];
+    }
     /* r^{n+1} = r^n + dt u^{n+1} (Eq. 7) */
-    move_particles(S, P->u, P->v, dt);
-    /* mesh velocity, Eq. 36, with the LS gradient of Eq. 26 */
-    lsq_gradient(su->g, st->p, st->gx, st->gy);
+    move_particles(S, P->u, P->v, dt, &stats->walled);
+    /* mesh velocity, Eq. 36, with the LS gradient of Eq. 26 (incremental:
+     * of p^{n+1} - p^n, as the particles) */
+    lsq_gradient(su->g, dp, st->gx, st->gy);
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx c = 0; c < nc; c++) {
         st->uc[c] = st->usc[c] - dt * st->gx[c];
@@ -1621,13 +1741,15 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     stage_mark(&clk, NULL, -1);
     UMP_CALL(grow_particle_work(st, st->P->n, err));
     set_boundary_particles(su, st);
+    if (su->set.incremental) /* grad p^n at r^n for the predictor */
+        stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->p, st->gpx, st->gpy);
     stage_mark(&clk, stats, SOL_STAGE_BOUNDARY);
     UMP_CALL(step6_rows(S, dt, err));
     UMP_CALL(work_collect(S, stats, err));
     stage_mark(&clk, stats, SOL_STAGE_ROWS);
     UMP_CALL(step6_solve(S, dt, stats, err));
     stage_mark(&clk, stats, SOL_STAGE_SOLVE);
-    UMP_CALL(step7_intermediate(S, dt, err));
+    UMP_CALL(step7_intermediate(S, dt, &stats->walled, err));
     stage_mark(&clk, stats, SOL_STAGE_MOVE);
     step8_mls_velocity(S);
     UMP_CALL(work_collect(S, stats, err));

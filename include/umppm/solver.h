@@ -18,7 +18,8 @@
  *   10 u^{n+1} = u* - dt grad p (Eq. 10, MLS gradient Eqs. 33-34),
  *      r^{n+1} = r^n + dt u^{n+1} (Eq. 7); mesh velocity Eq. 36;
  *   11 particle management (UMPPM or UMPPM*), removal of particles that
- *      left through outlets or crossed walls.
+ *      left through open boundaries (a move that crosses a wall is stopped
+ *      at the wall instead).
  *
  * Buoyant (settings.buoyant): the Boussinesq source -beta (T - TRef) g
  * (Eq. 4, per unit mass, T^n of the particle) enters the predictor and the
@@ -57,6 +58,9 @@ typedef struct sol_settings {
     double beta, t_ref;      /* expansion coefficient [1/K], TRef [K] */
     double kappa;            /* thermal diffusivity nu/Pr [m^2/s] */
     int sort_interval;       /* re-sort particles by cell every N steps (default 1; 0 never) */
+    int incremental;         /* incremental pressure splitting: the predictor carries
+                                - grad p^n, the correction - grad (p^{n+1} - p^n)
+                                (default 0: [NSH16]'s non-incremental Eqs. 14, 10) */
     double t_start;          /* start time: boundary conditions that are functions
                                 of time and have no `value` start at their value
                                 at t_start (default 0) */
@@ -77,7 +81,8 @@ int sol_threads(void);
 typedef struct sol_stats {
     double co_mean, co_max;      /* Courant number of the new mesh velocity */
     size_t np;                   /* fluid particles after the step */
-    size_t added, deleted, left; /* management and boundary removals */
+    size_t added, deleted, left; /* management; removals through open boundaries */
+    size_t walled;               /* moves (Steps 7 and 10) stopped at a wall */
     lsolve_stats pred[3];        /* predictor solves (u, v; T if buoyant) */
     double p_res0, p_res;        /* PPE: OpenFOAM-normalised residual before and
                                     after the direct solve */

@@ -211,12 +211,15 @@ check_below() {
 
 # From a umppmFoam log: the largest per-cell continuity error after the
 # correction over all steps ("... max = X"), and the number of particles
-# that left the domain.
+# that left through open boundaries (outlets).
 log_max_continuity() {
     grep -o 'max = [0-9.e+-]*' "$1" | awk '{ if ($3 > m) m = $3 } END { print m + 0 }'
 }
 log_particles_left() {
-    grep -o 'left the domain [0-9]*' "$1" | awk '{ s += $4 } END { print s + 0 }'
+    grep -o 'left through outlets [0-9]*' "$1" | awk '{ s += $4 } END { print s + 0 }'
+}
+log_wall_stops() {
+    grep -o 'stopped at walls [0-9]*' "$1" | awk '{ s += $4 } END { print s + 0 }'
 }
 
 # kv_get LINE KEY: the value of KEY=value in a line of such pairs (the

@@ -6,9 +6,16 @@
 # run by icoFoam on the same mesh
 # (tools/cavityValidate.sh). Asserts, against Ghia et al. (1982) Table I/II
 # on the centrelines (15 interior points each):
-#   - RMS error of u and of v < 0.012 on quads (measured 0.004..0.008),
-#     < 0.015 on triangles (measured 0.010, 0.011), and at most twice
-#     icoFoam's RMS error on the same mesh (measured ratios 0.6..1.9);
+#   - RMS error of u and of v < 0.012 on quads (measured 0.004..0.007),
+#     < 0.015 on triangles (measured 0.0116, 0.0125), and at most twice
+#     icoFoam's RMS error on the same mesh on quads (measured ratios
+#     0.6..1.05), 2.5 times on triangles (measured 1.59 for u, 2.38 for v).
+#     The triangle bound was 2 (measured 1.94 for v) while particles that
+#     crossed a wall were deleted; stopping them at the wall (src/solver.c
+#     wall_stop) raised this case's v error from 0.0102 to 0.0125. On the
+#     944-triangle mesh of bench/cavityGhia.sh (Re 100, t = 20) the same
+#     change moved v_rms from 0.00188 to 0.00198 and u_rms from 0.00424 to
+#     0.00405 (README, "Wall stops");
 #     the Re = 10 solution (a wrong viscosity) scores 0.018 / 0.028 and a
 #     fluid at rest 0.41 / 0.14;
 #   - max error of u and v < 0.03 (measured 0.009..0.024);
@@ -42,7 +49,8 @@ for run in "quad UMPPMstar fixedValue" "quad UMPPM fixedValue" "tri UMPPMstar mo
     [ "$1" = tri ] && bound=0.015
     for k in u_rms v_rms; do
         check_below "$run $k" "$(get $k)" $bound
-        check_below "$run $k / icoFoam's" "$(awk -v a="$(get $k)" -v b="$(get ico_$k)" 'BEGIN { print a / b }')" 2
+        check_below "$run $k / icoFoam's" "$(awk -v a="$(get $k)" -v b="$(get ico_$k)" 'BEGIN { print a / b }')" \
+            "$([ "$1" = tri ] && echo 2.5 || echo 2)"
     done
     for k in u_max v_max; do check_below "$run $k" "$(get $k)" 0.03; done
     check_below "$run U vs icoFoam L2rel" "$(get UvsIco_L2rel)" 0.1
