@@ -127,7 +127,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->pred_tol = a->um.pred_tol;
     s->pred_maxit = (int)a->um.pred_maxit;
     s->sort_interval = (int)a->um.sort_interval;
-    s->incremental = a->um.incremental;
+    s->balanced = a->um.buoyancy_balanced;
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
     s->p_ref_value = a->so.p_ref_value;
     if (a->bu.on) {
@@ -1133,8 +1133,10 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     if (strcmp(a.um.laplacian, "CPM") != 0)
         printf(" (r_e = %g x spacing)", lap_re_factor(&(lap_params){(lap_model)lap_parse(a.um.laplacian),
                                                                    a.um.re_factor}));
-    printf(", %s splitting, PPE solver %s, predictor BiCGSTAB/%s tolerance %g\n",
-           a.um.incremental ? "incremental" : "standard", a.um.ppe_solver, a.um.pred_pc, a.um.pred_tol);
+    if (a.bu.on)
+        printf(", buoyancy %s", a.um.buoyancy_balanced ? "balanced" : "source");
+    printf(", PPE solver %s, predictor BiCGSTAB/%s tolerance %g\n", a.um.ppe_solver, a.um.pred_pc,
+           a.um.pred_tol);
     printf("Time scheme: ddtSchemes %s; umppmFoam runs its first-order implicit UMPPM step (Eq. 14) "
            "for Euler and backward alike\n", a.ddt);
     printf("Threads: %d (OpenMP; set OMP_NUM_THREADS to change)\n\n", sol_threads());

@@ -441,8 +441,8 @@ static const int variant_values[] = {0, 1, 1};
 static const char *const laplacian_words[] = {"CPM", "MPS", "IPS", "PS", NULL};
 static const char *const ppe_words[] = {"auto", "UMFPACK", "KLU", "CHOLMOD", NULL};
 static const char *const pc_words[] = {"ILU0", "Jacobi", "none", NULL};
-static const char *const splitting_words[] = {"standard", "incremental", NULL};
-static const int splitting_values[] = {0, 1};
+static const char *const buoyancy_words[] = {"source", "balanced", NULL};
+static const int buoyancy_values[] = {0, 1};
 
 #define UM_FIELD(f) offsetof(case_umppm, f), sizeof(((case_umppm *)0)->f)
 #define UM_NORANGE {0, 0, 0, 0, 0, 0, 0}
@@ -479,9 +479,9 @@ static const case_option umppm_options[] = {
      "name of the particle cloud under <time>/lagrangian/", UM_FIELD(cloud_name)},
     {"sortInterval", CASE_OPT_LABEL, "1", 1, NULL, NULL, UM_GE(0),
      "re-sort the particles by cell every N steps; 0: never", UM_FIELD(sort_interval)},
-    {"splitting", CASE_OPT_CHOICE, "standard", 0, splitting_words, splitting_values, UM_NORANGE,
-     "pressure splitting: standard (the paper's Eqs. 14, 10) or incremental (the predictor "
-     "carries -grad p^n)", UM_FIELD(incremental)},
+    {"buoyancy", CASE_OPT_CHOICE, "balanced", 1, buoyancy_words, buoyancy_values, UM_NORANGE,
+     "buoyant: force in the predictor less its balancing pressure",
+     UM_FIELD(buoyancy_balanced)},
     {"maxVelocity", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_GE(0),
      "stop when a cell or particle |U| exceeds it; 0: 100 x the speed scale",
      UM_FIELD(max_velocity)},

@@ -172,7 +172,8 @@ typedef struct sol_state {
     /* mesh fields */
     double *p, *uc, *vc, *usc, *vsc, *flux, *gflux, *gx, *gy, *div;
     double *pf;                /* [nfaces] face pressure of fixed faces (pi) */
-    double *pold, *gflux0;     /* incremental: p^n [ncells], its face gradient flux [nfaces] */
+    double *pib, *fluxb, *pf0; /* balanced buoyancy: pi_b [ncells], its face fluxes
+                                  dt b_f . A_f [nfaces], zero face values [nfaces] */
     /* boundary values of this step per boundary face b = f - ninternal */
     double *ub, *vb;           /* prescribed velocity (fixed faces), inletValue,
                                   outletValue, or the tangential inflow velocity
@@ -182,7 +183,7 @@ typedef struct sol_state {
     /* per particle */
     size_t wcap;
     double *x0, *y0, *us, *vs, *rhs_u, *rhs_v, *Ts, *rhs_T;
-    double *gpx, *gpy;         /* incremental: grad p^n at the particles (r^n) */
+    double *gpx, *gpy;         /* a pressure gradient at the particles */
     ump_idx *cell0;
     unsigned char *keep;
     /* predictor system I + dt nu L in rows */
@@ -311,7 +312,7 @@ void sol_free(sol **pS)
                    su->ru_sx, su->ru_sy, su->of_off, su->of_face, st->p, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
-                   st->av, st->cnt_cell, st->pold, st->gflux0, st->gpx, st->gpy};
+                   st->av, st->cnt_cell, st->pib, st->fluxb, st->pf0, st->gpx, st->gpy};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
     if (S->work)
@@ -968,14 +969,15 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     ump_status rc;
     if (!(S->work = ump_alloc_array((size_t)S->nthreads, sizeof *S->work)))
         goto nomem;
-    double **cellarr[] = {&st->p, &st->uc, &st->vc, &st->usc, &st->vsc, &st->gx, &st->gy, &st->div, &st->pold};
+    double **cellarr[] = {&st->p, &st->uc, &st->vc, &st->usc, &st->vsc, &st->gx, &st->gy, &st->div, &st->pib};
     for (size_t i = 0; i < sizeof cellarr / sizeof cellarr[0]; i++)
         if (!(*cellarr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
             goto nomem;
     if (!(st->cnt_cell = ump_alloc_array((size_t)nc, sizeof(ump_idx))) ||
         !(st->flux = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->gflux = ump_alloc_array((size_t)nf, sizeof(double))) ||
-        !(st->gflux0 = ump_alloc_array((size_t)nf, sizeof(double))) ||
+        !(st->fluxb = ump_alloc_array((size_t)nf, sizeof(double))) ||
+        !(st->pf0 = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->pf = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(su->p_dir = ump_alloc_array((size_t)nf, 1)) || !(su->u_kind = ump_alloc_array((size_t)nb, 1)) ||
         !(su->p_total = ump_alloc_array((size_t)nb, 1)) || !(su->p0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
@@ -1227,7 +1229,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
     double gx = buoyant ? set->g[m->ax[0]] : 0, gy = buoyant ? set->g[m->ax[1]] : 0;
     const lap_params mps = {LAP_MPS, 3.1};
     const part_boundary *bp = &st->bp;
-    int incr = set->incremental;
+    int bal = buoyant && set->balanced;
 #pragma omp parallel num_threads(S->nthreads)
     {
         sol_work *w = &S->work[thread_id()];
@@ -1288,8 +1290,8 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                 sort_row(ci + st->rp[i], av + st->rp[i], pos - st->rp[i]);
             /* Boussinesq source per unit mass, -beta (T^n - TRef) g (Eq. 4) */
             double b = buoyant ? -set->beta * (P->T[i] - set->t_ref) : 0;
-            /* incremental splitting: - dt grad p^n at r^n (step6_rows) */
-            double px = incr ? st->gpx[i] : 0, py = incr ? st->gpy[i] : 0;
+            /* balanced buoyancy: b - grad pi_b (balance_buoyancy) */
+            double px = bal ? st->gpx[i] : 0, py = bal ? st->gpy[i] : 0;
             st->rhs_u[i] = P->u[i] + dnu * bu + dt * (b * gx - px);
             st->rhs_v[i] = P->v[i] + dnu * bv + dt * (b * gy - py);
             st->rhs_T[i] = P->T[i] + dkap * bT; /* Eq. 37 */
@@ -1576,6 +1578,62 @@ static void step8_mls_velocity(sol *S)
     }
 }
 
+/* Balanced buoyancy (docs/METHOD.md section 6; the paper puts the whole
+ * Boussinesq source of Eq. 4 into the predictor). The pressure is split as
+ * pi = pi_b + pi_d: pi_b is the part that balances the buoyancy b =
+ * -beta (T^n - TRef) g, from the PPE's own matrix (Eqs. 20, 25) with the
+ * face fluxes dt b_f . A_f (interior and fixed-pressure faces; zero where
+ * the velocity is prescribed, as u* there) and fixed values 0; the
+ * predictor then carries b - grad pi_b at each particle (the MLS
+ * derivative of Eq. 10 at r^n), and the step's PPE gives pi_d, which the
+ * correction applies as usual. At rest in a stable stratification b -
+ * grad pi_b vanishes to the accuracy of the MLS derivative, so the
+ * viscous predictor no longer damps the buoyancy near walls without the
+ * pressure that balances it (the O(dt) spurious velocity of the source
+ * splitting). b_f uses T_f, the mean of the two cells' T_P + grad T_P .
+ * (x_f - x_P) (the LS gradient of Eq. 26; exact for linear T), on
+ * fixed-pressure boundary faces the face's boundary-particle temperature.
+ * (The MLS value of the particle temperatures at the face, as u*_f in
+ * Step 8, was tried and measured worse: the annulus tutorial's Nu 4.12
+ * instead of 4.20, OpenFOAM 4.90.) One more solve per step with the
+ * factorization made at start-up. */
+static ump_status balance_buoyancy(sol *S, double dt, sol_stats *stats, ump_err *err)
+{
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    const sol_settings *set = &su->set;
+    ump_idx ni = m->ninternal;
+    double gx = set->g[m->ax[0]], gy = set->g[m->ax[1]];
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+    for (ump_idx f = 0; f < m->nfaces; f++) {
+        double Tf;
+        if (f < ni) {
+            ump_idx o = m->owner[f], q = m->neigh[f];
+            double sx = m->sepx ? m->sepx[f] : 0, sy = m->sepy ? m->sepy[f] : 0;
+            double To = st->Tc[o] + st->gtx[o] * (m->fx[f] - m->cx[o]) + st->gty[o] * (m->fy[f] - m->cy[o]);
+            double Tq = st->Tc[q] + st->gtx[q] * (m->fx[f] + sx - m->cx[q]) +
+                        st->gty[q] * (m->fy[f] + sy - m->cy[q]);
+            Tf = 0.5 * (To + Tq);
+        } else if (su->p_dir[f]) {
+            Tf = st->bp.T[f - ni];
+        } else {
+            st->fluxb[f] = 0;
+            continue;
+        }
+        double b = -set->beta * (Tf - set->t_ref); /* Eq. 4 per unit mass */
+        st->fluxb[f] = dt * b * (gx * m->nx[f] + gy * m->ny[f]) * m->len[f];
+    }
+    UMP_CALL(ppe_solve(su->pe, st->fluxb, dt, st->pf0, st->pib, err));
+    if (su->need_ref) { /* the reference level belongs to pi_d */
+        double r = st->pib[set->p_ref_cell] - set->p_ref_value;
+        for (ump_idx c = 0; c < m->ncells; c++)
+            st->pib[c] -= r;
+    }
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pib, st->gpx, st->gpy);
+    return UMP_OK;
+}
+
 /* ---- Step 9: the pressure equation ----------------------------------------- */
 
 static ump_status step9_pressure(sol *S, double dt, ump_err *err)
@@ -1583,17 +1641,6 @@ static ump_status step9_pressure(sol *S, double dt, ump_err *err)
     const sol_setup *su = &S->su;
     sol_state *st = &S->st;
     const mesh2d *m = su->m;
-    if (su->set.incremental) {
-        /* incremental splitting: u* carries - dt grad p^n, so the face
-         * fluxes get + dt grad p^n back (the PPE's own face rows) and the
-         * solve gives p^{n+1} itself; the correction below removes
-         * dt grad p^{n+1}: net - dt grad (p^{n+1} - p^n) */
-        memcpy(st->pold, st->p, (size_t)m->ncells * sizeof *st->pold);
-        ppe_face_gradient_flux(su->pe, st->p, st->pf, st->gflux0);
-#pragma omp parallel for schedule(static) num_threads(S->nthreads)
-        for (ump_idx f = 0; f < m->nfaces; f++)
-            st->flux[f] += dt * st->gflux0[f];
-    }
     /* Eqs. 20, 22-25, one solve with the factorization made at start-up */
     UMP_CALL(ppe_solve(su->pe, st->flux, dt, st->pf, st->p, err));
     ppe_face_gradient_flux(su->pe, st->p, st->pf, st->gflux);
@@ -1615,15 +1662,9 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
     size_t n = P->n;
     /* u^{n+1} = u* - dt grad p (Eq. 10), grad p at r* by the MLS
      * derivative (Eqs. 33-34) of the centroid pressures of the particle's
-     * cell and its N2 stencil; incremental: of p^{n+1} - p^n (kept in
-     * pold) */
+     * cell and its N2 stencil (balanced buoyancy: p = pi_d, the part the
+     * predictor has not applied yet) */
     const double *dp = st->p;
-    if (su->set.incremental) {
-#pragma omp parallel for schedule(static) num_threads(S->nthreads)
-        for (ump_idx c = 0; c < nc; c++)
-            st->pold[c] = st->p[c] - st->pold[c];
-        dp = st->pold;
-    }
     /* gpx/gpy are free after the predictor */
     stats->mls_fallbacks += (int)particle_pressure_gradient(S, dp, st->gpx, st->gpy);
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
@@ -1633,13 +1674,15 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
     }
     /* r^{n+1} = r^n + dt u^{n+1} (Eq. 7) */
     move_particles(S, P->u, P->v, dt, &stats->walled);
-    /* mesh velocity, Eq. 36, with the LS gradient of Eq. 26 (incremental:
-     * of p^{n+1} - p^n, as the particles) */
+    /* mesh velocity, Eq. 36, with the LS gradient of Eq. 26 */
     lsq_gradient(su->g, dp, st->gx, st->gy);
+    int bal = su->set.buoyant && su->set.balanced;
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx c = 0; c < nc; c++) {
         st->uc[c] = st->usc[c] - dt * st->gx[c];
         st->vc[c] = st->vsc[c] - dt * st->gy[c];
+        if (bal)
+            st->p[c] += st->pib[c]; /* pi = pi_b + pi_d */
     }
 }
 
@@ -1741,8 +1784,8 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     stage_mark(&clk, NULL, -1);
     UMP_CALL(grow_particle_work(st, st->P->n, err));
     set_boundary_particles(su, st);
-    if (su->set.incremental) /* grad p^n at r^n for the predictor */
-        stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->p, st->gpx, st->gpy);
+    if (su->set.buoyant && su->set.balanced)
+        UMP_CALL(balance_buoyancy(S, dt, stats, err));
     stage_mark(&clk, stats, SOL_STAGE_BOUNDARY);
     UMP_CALL(step6_rows(S, dt, err));
     UMP_CALL(work_collect(S, stats, err));

@@ -90,7 +90,7 @@ typedef struct case_umppm {
     char cloud_name[64];         /* default umppmCloud */
     long sort_interval;          /* sortInterval: re-sort the particles by cell
                                     every N steps, 0 never; default 1 */
-    int incremental;             /* splitting: 1 incremental, 0 standard (default) */
+    int buoyancy_balanced;       /* buoyancy: 1 balanced (default), 0 source */
     double max_velocity;         /* maxVelocity: divergence bound on |U| of
                                     cells and particles; 0 (default): 100 x
                                     the case's speed scale (app.c) */

@@ -22,7 +22,9 @@
  *      at the wall instead).
  *
  * Buoyant (settings.buoyant): the Boussinesq source -beta (T - TRef) g
- * (Eq. 4, per unit mass, T^n of the particle) enters the predictor and the
+ * (Eq. 4, per unit mass, T^n of the particle) enters the predictor (with
+ * settings.balanced less the gradient of the pressure pi_b that balances
+ * it, solved first each step with the same matrix) and the
  * particle temperature is advanced implicitly with the same particle
  * Laplacian and thermal diffusivity kappa = nu/Pr (Eq. 37); the mesh
  * temperature T_P is the MLS value of the particle temperatures at the
@@ -58,9 +60,9 @@ typedef struct sol_settings {
     double beta, t_ref;      /* expansion coefficient [1/K], TRef [K] */
     double kappa;            /* thermal diffusivity nu/Pr [m^2/s] */
     int sort_interval;       /* re-sort particles by cell every N steps (default 1; 0 never) */
-    int incremental;         /* incremental pressure splitting: the predictor carries
-                                - grad p^n, the correction - grad (p^{n+1} - p^n)
-                                (default 0: [NSH16]'s non-incremental Eqs. 14, 10) */
+    int balanced;            /* buoyant: the predictor carries b - grad pi_b, pi_b the
+                                pressure that balances the buoyancy b (solver.c
+                                balance_buoyancy); 0: b alone, as [NSH16] Eq. 14 */
     double t_start;          /* start time: boundary conditions that are functions
                                 of time and have no `value` start at their value
                                 at t_start (default 0) */
