@@ -8,7 +8,13 @@
 #   - elbow (fluentMeshToFoam: 918 triangles and quads, two fixedValue
 #     inlets, zeroGradient U / fixedValue p outlet, t = 10): runs to the end,
 #     continuity < 1e-12, particles leave through the outlet and the count
-#     stays within 10% of the cell count;
+#     stays within 10% of the cell count; against icoFoam on a copy
+#     (postProcess patchAverage of p on each inlet, t = 10): inlet-5
+#     p / icoFoam's < 7.5 (measured 1.160 / 0.201 = 5.8) and inlet-6 < 3.5
+#     (2.426 / 0.874 = 2.8), U relative L2 < 0.40 (0.354). Before wall
+#     stops (particles crossing a wall deleted) these were 11 and 6.4 and
+#     the check fails; the target of issue 14 (within 15 %) is not met
+#     (README, "Accuracy: studies and changes");
 #   - cavityGrade (starts at 0.5, which its Allrun maps from cavity): refused
 #     with one error line naming the controlDict, as icoFoam refuses it.
 # Needs UMPPMFOAM and TOOLDIR (foamCompare).
@@ -52,6 +58,25 @@ if "$UMPPMFOAM" -case "$e" > "$e/log.umppmFoam" 2>&1; then
         END { print lo, hi }')
     check_range "elbow: fewest particles" "${np% *}" 826 1010
     check_range "elbow: most particles" "${np#* }" 826 1010
+    mkdir -p "$e/ico" && cp -r "$e/0" "$e/constant" "$e/system" "$e/ico/"
+    if run_in "$e/ico" icoFoam icoFoam; then
+        for k in 5 6; do
+            for d in "$e" "$e/ico"; do
+                run_in "$d" "patchAverage$k" postProcess -func "patchAverage(name=velocity-inlet-$k,p)" -time 10 ||
+                    fail=1
+            done
+            pu=$(sed -n 's/.*areaAverage(velocity-inlet-'$k') of p = //p' "$e/log.patchAverage$k" | tail -1)
+            pi=$(sed -n 's/.*areaAverage(velocity-inlet-'$k') of p = //p' "$e/ico/log.patchAverage$k" | tail -1)
+            echo "  elbow inlet-$k p: umppmFoam $pu, icoFoam $pi"
+            bound=7.5
+            [ $k = 6 ] && bound=3.5
+            check_below "elbow: inlet-$k p / icoFoam's" "$(awk -v a="$pu" -v b="$pi" 'BEGIN { print a / b }')" $bound
+        done
+        rel=$("$TOOLDIR/foamCompare" "$e" 10 "$e/ico" 10 U | awk '$1 == "U" { print $4 }')
+        check_below "elbow: U vs icoFoam, relative L2" "$rel" 0.40
+    else
+        fail=1
+    fi
 else
     echo "  FAIL elbow: umppmFoam failed"; tail -3 "$e/log.umppmFoam"; fail=1
 fi

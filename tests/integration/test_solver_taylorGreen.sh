@@ -10,7 +10,12 @@
 #     sampled maximum) < 0.05 (measured 0.033); no decay at all would be 0.15,
 #   - per-cell continuity error after correction < 1e-12 every step,
 #   - a restart from the 0.1 directory (particles read from the cloud)
-#     reproduces the straight run at 0.2 to 1e-10 relative.
+#     reproduces the straight run at 0.2 to 1e-10 relative;
+#   - the paper's step, CFL 0.25 (dt = 0.25 l_avg / U, l_avg = 1/40), on
+#     N_m = 1600 to t = 5: L2 relative error < 0.02 (measured 0.0165) and
+#     Eq. 41 < 0.03 (measured 0.0264). These guard today's accuracy; the
+#     target of issue 14, Eq. 41 < 0.02 (the paper's figure), is not met
+#     (README, "Accuracy: studies and changes").
 # Needs UMPPMFOAM and TOOLDIR (directory of the built tools).
 set -eu -o pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -52,6 +57,22 @@ grep -q "Restart: 400 particles read" "$r/log" || { echo "FAIL: restart did not 
 rel=$("$TOOLDIR/foamCompare" "$r" 0.2 "$c" 0.2 U | awk '$1 == "U" { print $4 }')
 echo "restart vs straight run at 0.2: U L2 relative difference $rel"
 awk -v a="$rel" 'BEGIN { exit !(a < 1e-10) }' || { echo "FAIL: restart differs ($rel)"; fail=1; }
+# the paper's CFL 0.25 on N_m = 1600, t = 5
+g=$work/tg1600
+mkdir -p "$g/system" "$g/constant"
+sed 's/endTime 0.2;/endTime 5;/; s/deltaT 0.005;/deltaT 0.00625;/; s/writeInterval 0.1;/writeInterval 5;/' \
+    "$c/system/controlDict" > "$g/system/controlDict"
+cp "$c/system/fvSolution" "$g/system/" && cp "$c/constant/transportProperties" "$g/constant/"
+"$TOOLDIR/makeCrossedTriangleMesh" -case "$g" -n 20 > /dev/null
+"$TOOLDIR/setTaylorGreen" -case "$g" > /dev/null
+if "$UMPPMFOAM" -case "$g" > "$g/log" 2>&1; then
+    read -r _ l2 _ _ _ e41 _ < <(python3 "$top/tools/taylorGreenError.py" "$g" 5)
+    echo "Taylor-Green N_m=1600 CFL 0.25 t=5: L2 relative error $l2, Eq. 41 $e41"
+    check_below "N_m 1600, CFL 0.25: L2 relative error" "$l2" 0.02
+    check_below "N_m 1600, CFL 0.25: Eq. 41" "$e41" 0.03
+else
+    echo "FAIL: umppmFoam (N_m 1600, CFL 0.25)"; tail -3 "$g/log"; fail=1
+fi
 [ "$fail" = 0 ] || { echo "work dir kept: $work"; exit 1; }
 rm -rf "$work"
 echo "PASS"
