@@ -1373,9 +1373,10 @@ static int is_wall_face(const sol_setup *su, const sol_state *st, ump_idx f)
  * carried velocity survives, where deletion replaced it by an
  * interpolated one. (Keeping the whole velocity was tried: a particle
  * stopped in a lid corner was pushed in again every step and the 20 x 20
- * Re 100 cavity with UMPPM diverged at t = 1.1.) At a corner the projected point can lie beyond a second
- * wall: it is projected again (at most WALL_TRIES times), and failing
- * that the particle stays at its start. Returns the cell. */
+ * Re 100 cavity with UMPPM diverged at t = 1.1.) At a corner the
+ * projected point can lie beyond a second wall: it is projected again (at
+ * most WALL_TRIES times), and failing that the particle stays at its
+ * start. Returns the cell. */
 #define WALL_GAP 0.1
 #define WALL_TRIES 3
 static ump_idx wall_stop(const sol_setup *su, const sol_state *st, ump_idx f, double *x, double *y,
