@@ -172,7 +172,7 @@ typedef struct sol_state {
     /* mesh fields */
     double *p, *uc, *vc, *usc, *vsc, *flux, *gflux, *gx, *gy, *div;
     double *pf;                /* [nfaces] face pressure of fixed faces (pi) */
-    double *pib, *fluxb, *pf0; /* balanced buoyancy: pi_b [ncells], its face fluxes
+    double *pib, *fluxb, *pf0; /* buoyant (balanced): pi_b [ncells], its face fluxes
                                   dt b_f . A_f [nfaces], zero face values [nfaces] */
     /* boundary values of this step per boundary face b = f - ninternal */
     double *ub, *vb;           /* prescribed velocity (fixed faces), inletValue,
@@ -969,15 +969,13 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     ump_status rc;
     if (!(S->work = ump_alloc_array((size_t)S->nthreads, sizeof *S->work)))
         goto nomem;
-    double **cellarr[] = {&st->p, &st->uc, &st->vc, &st->usc, &st->vsc, &st->gx, &st->gy, &st->div, &st->pib};
+    double **cellarr[] = {&st->p, &st->uc, &st->vc, &st->usc, &st->vsc, &st->gx, &st->gy, &st->div};
     for (size_t i = 0; i < sizeof cellarr / sizeof cellarr[0]; i++)
         if (!(*cellarr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
             goto nomem;
     if (!(st->cnt_cell = ump_alloc_array((size_t)nc, sizeof(ump_idx))) ||
         !(st->flux = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->gflux = ump_alloc_array((size_t)nf, sizeof(double))) ||
-        !(st->fluxb = ump_alloc_array((size_t)nf, sizeof(double))) ||
-        !(st->pf0 = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->pf = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(su->p_dir = ump_alloc_array((size_t)nf, 1)) || !(su->u_kind = ump_alloc_array((size_t)nb, 1)) ||
         !(su->p_total = ump_alloc_array((size_t)nb, 1)) || !(su->p0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
@@ -989,12 +987,14 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
             rc = UMP_FAIL(err, UMP_ERR_INPUT, "solver: a buoyant case needs the temperature field T");
             goto fail;
         }
-        double **carr[] = {&st->Tc, &st->gtx, &st->gty, &su->ghc};
+        double **carr[] = {&st->Tc, &st->gtx, &st->gty, &su->ghc, &st->pib};
         for (size_t i = 0; i < sizeof carr / sizeof carr[0]; i++)
             if (!(*carr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
                 goto nomem;
         if (!(su->ghf = ump_alloc_array((size_t)nf, sizeof(double))) ||
             !(st->prgh_f = ump_alloc_array((size_t)nf, sizeof(double))) ||
+            !(st->fluxb = ump_alloc_array((size_t)nf, sizeof(double))) ||
+            !(st->pf0 = ump_alloc_array((size_t)nf, sizeof(double))) ||
             !(su->t_kind = ump_alloc_array((size_t)nb, 1)) ||
             !(su->tb = ump_alloc_array((size_t)nb, sizeof(double))))
             goto nomem;
@@ -1664,10 +1664,8 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
     /* u^{n+1} = u* - dt grad p (Eq. 10), grad p at r* by the MLS
      * derivative (Eqs. 33-34) of the centroid pressures of the particle's
      * cell and its N2 stencil (balanced buoyancy: p = pi_d, the part the
-     * predictor has not applied yet) */
-    const double *dp = st->p;
-    /* gpx/gpy are free after the predictor */
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, dp, st->gpx, st->gpy);
+     * predictor has not applied yet); gpx/gpy are free after the predictor */
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->p, st->gpx, st->gpy);
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (size_t i = 0; i < n; i++) {
         P->u[i] = st->us[i] - dt * st->gpx[i];
@@ -1676,7 +1674,7 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
     /* r^{n+1} = r^n + dt u^{n+1} (Eq. 7) */
     move_particles(S, P->u, P->v, dt, &stats->walled);
     /* mesh velocity, Eq. 36, with the LS gradient of Eq. 26 */
-    lsq_gradient(su->g, dp, st->gx, st->gy);
+    lsq_gradient(su->g, st->p, st->gx, st->gy);
     int bal = su->set.buoyant && su->set.balanced;
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx c = 0; c < nc; c++) {
