@@ -31,10 +31,11 @@ TEST_LDLIBS = -lcmocka
 DEB_PACKAGES = build-essential clang libclang-rt-14-dev libomp-14-dev libsuitesparse-dev libopenblas0-serial \
                zlib1g-dev libcmocka-dev openfoam openfoam-examples gmsh gnuplot-nox
 
-LIB_SRC  = $(filter-out src/main.c,$(wildcard src/*.c))
+LIB_SRC  = $(filter-out src/main.c src/main_meshless.c,$(wildcard src/*.c))
 LIB_OBJ  = $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o)
 LIB      = $(BUILD)/libumppm.a
 APP      = $(BUILD)/umppmFoam
+MLAPP    = $(BUILD)/meshlessFoam
 UNIT_SRC = $(wildcard tests/unit/test_*.c)
 UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 
@@ -43,8 +44,8 @@ UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 
 TOOLS    = $(patsubst tools/%.c,$(BUILD)/tools/%,$(wildcard tools/*.c))
 
-all: $(APP) $(TOOLS)
-	@mkdir -p bin && ln -sf ../$(APP) bin/umppmFoam
+all: $(APP) $(MLAPP) $(TOOLS)
+	@mkdir -p bin && ln -sf ../$(APP) bin/umppmFoam && ln -sf ../$(MLAPP) bin/meshlessFoam
 	@for t in $(TOOLS); do ln -sf ../$$t bin/$$(basename $$t); done
 
 $(BUILD)/tools/%: tools/%.c $(LIB)
@@ -60,6 +61,9 @@ $(LIB): $(LIB_OBJ)
 	ar rcs $@ $^
 
 $(APP): $(BUILD)/obj/main.o $(LIB)
+	$(CC) $(CFLAGS_ALL) -o $@ $^ $(LDLIBS)
+
+$(MLAPP): $(BUILD)/obj/main_meshless.o $(LIB)
 	$(CC) $(CFLAGS_ALL) -o $@ $^ $(LDLIBS)
 
 $(BUILD)/tests/%: tests/unit/%.c $(wildcard tests/unit/*.h) $(wildcard src/*.h) $(LIB)

@@ -489,6 +489,8 @@ static const case_option umppm_options[] = {
 
 #define UM_NOPT (sizeof umppm_options / sizeof umppm_options[0])
 
+static const case_opt_table umppm_table = {"UMPPM", umppm_options, UM_NOPT};
+
 const case_option *case_umppm_options(size_t *n)
 {
     if (n)
@@ -562,7 +564,7 @@ static int in_range(const case_opt_range *r, double v)
 
 /* Store the value of o into its field of u: v (scalar), l (label, bool),
  * choices[choice] or its value (choice), w (word). */
-static void store(const case_option *o, case_umppm *u, double v, long l, int choice, const char *w)
+static void store(const case_option *o, void *u, double v, long l, int choice, const char *w)
 {
     char *p = (char *)u + o->offset;
     switch (o->type) {
@@ -595,14 +597,20 @@ static int choice_index(const case_option *o, const char *w)
     return -1;
 }
 
+/* Every field of dst (a struct of the table's options) set to its default. */
+static void table_defaults(const case_opt_table *t, void *dst)
+{
+    for (size_t i = 0; i < t->n; i++) {
+        const case_option *o = &t->opt[i];
+        int c = o->type == CASE_OPT_CHOICE ? choice_index(o, o->default_text) : 0;
+        store(o, dst, o->default_value, (long)o->default_value, c < 0 ? 0 : c, o->default_text);
+    }
+}
+
 void case_umppm_defaults(case_umppm *u)
 {
     memset(u, 0, sizeof *u);
-    for (size_t i = 0; i < UM_NOPT; i++) {
-        const case_option *o = &umppm_options[i];
-        int c = o->type == CASE_OPT_CHOICE ? choice_index(o, o->default_text) : 0;
-        store(o, u, o->default_value, (long)o->default_value, c < 0 ? 0 : c, o->default_text);
-    }
+    table_defaults(&umppm_table, u);
 }
 
 /* Length of the first component of key (up to '.' or the end). */
@@ -614,22 +622,22 @@ static size_t comp_len(const char *key)
 
 /* "UMPPM" or "UMPPM predictorSolver" for a dictionary at prefix "" or
  * "predictorSolver." */
-static void dict_label(const char *prefix, char *buf, size_t len)
+static void dict_label(const case_opt_table *t, const char *prefix, char *buf, size_t len)
 {
     size_t n = strlen(prefix);
-    snprintf(buf, len, "UMPPM%s%.*s", n ? " " : "", n ? (int)(n - 1) : 0, prefix);
+    snprintf(buf, len, "%s%s%.*s", t->dict, n ? " " : "", n ? (int)(n - 1) : 0, prefix);
 }
 
 /* Refuse entries of d (the dictionary at prefix) that no option reads, and
  * a non-dictionary where the table has a sub-dictionary. */
-static ump_status check_keys(const foam_dict *d, const char *prefix, ump_err *err)
+static ump_status check_keys(const case_opt_table *t, const foam_dict *d, const char *prefix, ump_err *err)
 {
     size_t np = strlen(prefix);
     for (size_t i = 0; i < d->n; i++) {
         const foam_entry *e = &d->e[i];
         int known = 0;
-        for (size_t k = 0; k < UM_NOPT; k++) {
-            const char *key = umppm_options[k].key;
+        for (size_t k = 0; k < t->n; k++) {
+            const char *key = t->opt[k].key;
             if (strncmp(key, prefix, np) != 0)
                 continue;
             const char *rest = key + np;
@@ -644,35 +652,35 @@ static ump_status check_keys(const foam_dict *d, const char *prefix, ump_err *er
             char sub[128], where[128];
             snprintf(sub, sizeof sub, "%s%s.", prefix, comp);
             if (!e->dict) {
-                char t[128];
-                dict_label(sub, where, sizeof where);
+                char tk[128];
+                dict_label(t, sub, where, sizeof where);
                 if (e->ntok)
-                    foam_tok_str(&e->tok[0], t, sizeof t);
+                    foam_tok_str(&e->tok[0], tk, sizeof tk);
                 else
-                    snprintf(t, sizeof t, "nothing");
+                    snprintf(tk, sizeof tk, "nothing");
                 return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s must be a dictionary { ... }, found %s%s",
-                                e->file, e->line, where, t, e->ntok > 1 ? " ..." : "");
+                                e->file, e->line, where, tk, e->ntok > 1 ? " ..." : "");
             }
-            UMP_CALL(check_keys(e->dict, sub, err));
+            UMP_CALL(check_keys(t, e->dict, sub, err));
             break;
         }
         if (known)
             continue;
         char names[512] = "", where[128];
-        for (size_t k = 0; k < UM_NOPT; k++) {
-            const char *key = umppm_options[k].key;
+        for (size_t k = 0; k < t->n; k++) {
+            const char *key = t->opt[k].key;
             if (strncmp(key, prefix, np) != 0)
                 continue;
             size_t cl = comp_len(key + np);
             int seen = 0;
             for (size_t j = 0; j < k && !seen; j++)
-                seen = strncmp(umppm_options[j].key, prefix, np) == 0 &&
-                       comp_len(umppm_options[j].key + np) == cl &&
-                       strncmp(umppm_options[j].key + np, key + np, cl) == 0;
+                seen = strncmp(t->opt[j].key, prefix, np) == 0 &&
+                       comp_len(t->opt[j].key + np) == cl &&
+                       strncmp(t->opt[j].key + np, key + np, cl) == 0;
             if (!seen)
                 cat(names, sizeof names, "%s%.*s", names[0] ? " " : "", (int)cl, key + np);
         }
-        dict_label(prefix, where, sizeof where);
+        dict_label(t, prefix, where, sizeof where);
         return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s: unknown key '%s'; known keys: %s", e->file, e->line,
                         where, e->key, names);
     }
@@ -698,7 +706,8 @@ static const char *type_text(case_opt_type t)
 
 /* Read option o from the UMPPM dictionary d (NULL: absent) into u, which
  * holds the defaults. */
-static ump_status read_option(const foam_dict *d, const case_option *o, case_umppm *u, ump_err *err)
+static ump_status read_option(const case_opt_table *t, const foam_dict *d, const case_option *o, void *u,
+                              ump_err *err)
 {
     /* walk the sub-dictionaries of the key's path (check_keys made sure
      * they are dictionaries) */
@@ -737,31 +746,31 @@ static ump_status read_option(const foam_dict *d, const case_option *o, case_ump
         break;
     }
     if (rc != UMP_OK) {
-        char t[128];
+        char tk[128];
         if (e->dict)
-            snprintf(t, sizeof t, "a dictionary");
+            snprintf(tk, sizeof tk, "a dictionary");
         else if (e->ntok == 0)
-            snprintf(t, sizeof t, "nothing");
+            snprintf(tk, sizeof tk, "nothing");
         else
-            foam_tok_str(&e->tok[0], t, sizeof t);
+            foam_tok_str(&e->tok[0], tk, sizeof tk);
         int with_allowed = o->type != CASE_OPT_BOOL && o->type != CASE_OPT_WORD;
-        return UMP_FAIL(err, rc, "%s:%d: UMPPM %s: expected %s, found %s%s%s%s", e->file, e->line, o->key,
-                        type_text(o->type), t, e->ntok > 1 ? " ..." : "", with_allowed ? "; allowed " : "",
+        return UMP_FAIL(err, rc, "%s:%d: %s %s: expected %s, found %s%s%s%s", e->file, e->line, t->dict, o->key,
+                        type_text(o->type), tk, e->ntok > 1 ? " ..." : "", with_allowed ? "; allowed " : "",
                         with_allowed ? allowed : "");
     }
     switch (o->type) {
     case CASE_OPT_CHOICE: {
         int c = choice_index(o, w);
         if (c < 0)
-            return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM %s '%s' is not one of: %s", e->file, e->line,
-                            o->key, w, allowed);
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s %s '%s' is not one of: %s", e->file, e->line,
+                            t->dict, o->key, w, allowed);
         store(o, u, 0, 0, c, NULL);
         break;
     }
     case CASE_OPT_WORD:
         if (strlen(w) >= o->size)
-            return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM %s '%.40s...' is too long: at most %zu characters",
-                            e->file, e->line, o->key, w, o->size - 1);
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s %s '%.40s...' is too long: at most %zu characters",
+                            e->file, e->line, t->dict, o->key, w, o->size - 1);
         store(o, u, 0, 0, 0, w);
         break;
     case CASE_OPT_BOOL:
@@ -771,10 +780,10 @@ static ump_status read_option(const foam_dict *d, const case_option *o, case_ump
     case CASE_OPT_LABEL:
         if (!in_range(&o->range, v)) {
             if (o->type == CASE_OPT_LABEL)
-                return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM %s %lld is out of range: allowed %s", e->file,
-                                e->line, o->key, (long long)l, allowed);
-            return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM %s %.15g is out of range: allowed %s", e->file,
-                            e->line, o->key, v, allowed);
+                return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s %s %lld is out of range: allowed %s", e->file,
+                                e->line, t->dict, o->key, (long long)l, allowed);
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s %s %.15g is out of range: allowed %s", e->file,
+                            e->line, t->dict, o->key, v, allowed);
         }
         store(o, u, v, (long)l, 0, NULL); /* labels: int64 = long (LP64) */
         break;
@@ -782,16 +791,16 @@ static ump_status read_option(const foam_dict *d, const case_option *o, case_ump
     return UMP_OK;
 }
 
-size_t case_umppm_help(char *buf, size_t len)
+static size_t table_help(const case_opt_table *t, char *buf, size_t len)
 {
     char text[8192] = ""; /* the whole text (about 2 kB) */
     cat(text, sizeof text,
-        "UMPPM dictionary (system/fvSolution)\n"
-        "  All keys are optional; unknown keys are refused. predictorSolver.KEY is KEY\n"
-        "  in the sub-dictionary UMPPM { predictorSolver { KEY value; } }.\n\n"
-        "  %-32s %-11s %s\n", "key", "default", "allowed");
-    for (size_t i = 0; i < UM_NOPT; i++) {
-        const case_option *o = &umppm_options[i];
+        "%s dictionary (system/fvSolution)\n"
+        "  All keys are optional; unknown keys are refused. sub.KEY is KEY\n"
+        "  in the sub-dictionary %s { sub { KEY value; } }.\n\n"
+        "  %-32s %-11s %s\n", t->dict, t->dict, "key", "default", "allowed");
+    for (size_t i = 0; i < t->n; i++) {
+        const case_option *o = &t->opt[i];
         char allowed[256];
         case_option_allowed(o, allowed, sizeof allowed);
         cat(text, sizeof text, "  %-32s %-11s %s\n      %s\n", o->key, o->default_text, allowed, o->help);
@@ -802,35 +811,202 @@ size_t case_umppm_help(char *buf, size_t len)
     return n;
 }
 
-ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err)
+size_t case_umppm_help(char *buf, size_t len) { return table_help(&umppm_table, buf, len); }
+
+/* Read the sub-dictionary t->dict of <case>/system/fvSolution into dst
+ * (defaults first; absent: all defaults). */
+static ump_status table_read(const case_opt_table *t, const char *case_dir, void *dst, foam_file **fout,
+                             ump_err *err)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/system/fvSolution", case_dir);
     foam_file *f = NULL;
     UMP_CALL(foam_file_read(path, &f, err));
-    case_umppm_defaults(u);
+    table_defaults(t, dst);
     ump_status rc = UMP_OK;
-    const foam_entry *top = foam_dict_find(f->dict, "UMPPM", 0);
+    const foam_entry *top = foam_dict_find(f->dict, t->dict, 0);
     const foam_dict *d = top ? top->dict : NULL;
     if (top && !d) {
-        char t[128];
+        char w[128];
         if (top->ntok)
-            foam_tok_str(&top->tok[0], t, sizeof t);
+            foam_tok_str(&top->tok[0], w, sizeof w);
         else
-            snprintf(t, sizeof t, "nothing");
-        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM must be a dictionary { ... }, found %s%s", top->file,
-                      top->line, t, top->ntok > 1 ? " ..." : "");
+            snprintf(w, sizeof w, "nothing");
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s must be a dictionary { ... }, found %s%s", top->file,
+                      top->line, t->dict, w, top->ntok > 1 ? " ..." : "");
     }
     if (rc == UMP_OK && d)
-        rc = check_keys(d, "", err);
-    for (size_t i = 0; i < UM_NOPT && rc == UMP_OK; i++)
-        rc = read_option(d, &umppm_options[i], u, err);
-    if (rc == UMP_OK && !case_name_is_safe(u->cloud_name)) {
-        const foam_entry *e = foam_dict_find(d, "cloudName", 0);
+        rc = check_keys(t, d, "", err);
+    for (size_t i = 0; i < t->n && rc == UMP_OK; i++)
+        rc = read_option(t, d, &t->opt[i], dst, err);
+    if (rc != UMP_OK || !fout)
+        foam_file_free(&f);
+    else
+        *fout = f;
+    return rc;
+}
+
+ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err)
+{
+    memset(u, 0, sizeof *u);
+    foam_file *f = NULL;
+    UMP_CALL(table_read(&umppm_table, case_dir, u, &f, err));
+    ump_status rc = UMP_OK;
+    if (!case_name_is_safe(u->cloud_name)) {
+        const foam_entry *top = foam_dict_find(f->dict, "UMPPM", 0);
+        const foam_entry *e = top && top->dict ? foam_dict_find(top->dict, "cloudName", 0) : NULL;
         rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: UMPPM cloudName '%s' is not a plain name: it becomes the "
                       "directory <time>/lagrangian/<cloudName>, so it must be non-empty without '/' or '..'",
-                      e ? e->file : path, e ? e->line : 0, u->cloud_name);
+                      e ? e->file : "system/fvSolution", e ? e->line : 0, u->cloud_name);
     }
+    foam_file_free(&f);
+    return rc;
+}
+
+/* ---- meshlessFoam ----------------------------------------------------------- */
+
+static const char *const method_words[] = {"MPS", NULL};
+static const char *const source_words[] = {"density", "mixed", NULL};
+static const int source_values[] = {0, 1};
+
+#define ML_FIELD(f) offsetof(case_meshless, f), sizeof(((case_meshless *)0)->f)
+#define ML_RANGE(lo, hi) {1, 1, 1, 0, (lo), (hi), 0}       /* (lo, hi] */
+#define ML_CLOSED(lo, hi) {1, 1, 0, 0, (lo), (hi), 0}      /* [lo, hi] */
+
+static const case_option meshless_options[] = {
+    {"method", CASE_OPT_CHOICE, "MPS", 0, method_words, NULL, UM_NORANGE,
+     "particle method: MPS (fully implicit moving particle semi-implicit)", ML_FIELD(method)},
+    {"spacing", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_GE(0),
+     "particle spacing l0 [m]; 0: half the median cell size of the mesh", ML_FIELD(spacing)},
+    {"reNumberDensity", CASE_OPT_SCALAR, "3.1", 3.1, NULL, NULL, ML_RANGE(1, 6),
+     "r_e of number density, gradient and collisions / l0 (Eqs. 3-5)", ML_FIELD(re_n)},
+    {"reLaplacian", CASE_OPT_SCALAR, "3.1", 3.1, NULL, NULL, ML_RANGE(1, 8),
+     "r_e of the Laplacian / l0 (Eqs. 6-7), >= reNumberDensity", ML_FIELD(re_lap)},
+    {"beta", CASE_OPT_SCALAR, "0.98", 0.98, NULL, NULL, UM_OPEN01,
+     "free surface: particles with n* < beta n0 get p = 0", ML_FIELD(beta)},
+    {"lambda", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_GE(0),
+     "Laplacian parameter lambda [m^2]; 0: Eq. 7 on the initial lattice", ML_FIELD(lambda)},
+    {"sourceTerm", CASE_OPT_CHOICE, "mixed", 1, source_words, source_values, UM_NORANGE,
+     "pressure source: density (Eq. 18) or mixed (div u* + gamma density)", ML_FIELD(source_mixed)},
+    {"gamma", CASE_OPT_SCALAR, "0.01", 0.01, NULL, NULL, ML_CLOSED(0, 1),
+     "weight of the density deviation in the mixed source", ML_FIELD(gamma)},
+    {"collisionDistance", CASE_OPT_SCALAR, "0.5", 0.5, NULL, NULL, ML_CLOSED(0, 1),
+     "collision model below this distance / l0; 0: off", ML_FIELD(collision)},
+    {"restitution", CASE_OPT_SCALAR, "0.2", 0.2, NULL, NULL, ML_CLOSED(0, 1),
+     "coefficient of restitution of the collision model", ML_FIELD(restitution)},
+    {"maxCo", CASE_OPT_SCALAR, "0.2", 0.2, NULL, NULL, ML_RANGE(0, 1),
+     "Courant number |U| dt / l0 kept by adjustTimeStep", ML_FIELD(max_co)},
+    {"pressureTolerance", CASE_OPT_SCALAR, "1e-8", 1e-8, NULL, NULL, UM_GT(0),
+     "relative tolerance of the pressure CG", ML_FIELD(p_tol)},
+    {"velocityTolerance", CASE_OPT_SCALAR, "1e-10", 1e-10, NULL, NULL, UM_GT(0),
+     "relative tolerance of the viscous CG", ML_FIELD(u_tol)},
+    {"maxIter", CASE_OPT_LABEL, "5000", 5000, NULL, NULL, UM_GE(1),
+     "iteration limit of both CG solves", ML_FIELD(maxit)},
+    {"cloudName", CASE_OPT_WORD, "meshlessCloud", 0, NULL, NULL, UM_NORANGE,
+     "name of the particle cloud under <time>/lagrangian/", ML_FIELD(cloud_name)},
+    {"maxVelocity", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_GE(0),
+     "stop when a particle |U| exceeds it; 0: 10 sqrt(2 |g| H), H the domain height", ML_FIELD(max_velocity)},
+};
+
+static const case_opt_table meshless_table = {"meshless", meshless_options,
+                                              sizeof meshless_options / sizeof meshless_options[0]};
+
+const case_option *case_meshless_options(size_t *n)
+{
+    if (n)
+        *n = meshless_table.n;
+    return meshless_options;
+}
+
+void case_meshless_defaults(case_meshless *u)
+{
+    memset(u, 0, sizeof *u);
+    table_defaults(&meshless_table, u);
+}
+
+size_t case_meshless_help(char *buf, size_t len) { return table_help(&meshless_table, buf, len); }
+
+ump_status case_read_meshless(const char *case_dir, case_meshless *u, ump_err *err)
+{
+    memset(u, 0, sizeof *u);
+    foam_file *f = NULL;
+    UMP_CALL(table_read(&meshless_table, case_dir, u, &f, err));
+    const foam_entry *top = foam_dict_find(f->dict, "meshless", 0);
+    const foam_dict *d = top ? top->dict : NULL;
+    const foam_entry *e = NULL;
+    ump_status rc = UMP_OK;
+    if (u->re_lap < u->re_n) {
+        e = d ? foam_dict_find(d, "reLaplacian", 0) : NULL;
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: meshless reLaplacian %g is smaller than reNumberDensity %g",
+                      e ? e->file : "system/fvSolution", e ? e->line : 0, u->re_lap, u->re_n);
+    } else if (!case_name_is_safe(u->cloud_name)) {
+        e = d ? foam_dict_find(d, "cloudName", 0) : NULL;
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: meshless cloudName '%s' is not a plain name: it becomes the "
+                      "directory <time>/lagrangian/<cloudName>, so it must be non-empty without '/' or '..'",
+                      e ? e->file : "system/fvSolution", e ? e->line : 0, u->cloud_name);
+    }
+    foam_file_free(&f);
+    return rc;
+}
+
+/* One phase's dictionary: transportModel Newtonian (or absent), nu, rho. */
+static ump_status read_phase(const foam_dict *top, const char *path, const char *name, double *nu, double *rho,
+                             ump_err *err)
+{
+    static const double d_nu[7] = {0, 2, -1, 0, 0, 0, 0}, d_rho[7] = {1, -3, 0, 0, 0, 0, 0};
+    const foam_entry *pe = foam_dict_find(top, name, 0);
+    if (!pe || !pe->dict)
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s: phase '%s' of 'phases' has no dictionary %s { transportModel "
+                        "Newtonian; nu ...; rho ...; }", path, name, name);
+    const foam_dict *d = pe->dict;
+    const foam_entry *tm = foam_dict_find(d, "transportModel", 0);
+    if (tm) {
+        const char *w = NULL;
+        UMP_CALL(foam_get_word(d, "transportModel", &w, err));
+        if (strcmp(w, "Newtonian") != 0)
+            return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: %s { transportModel %s; }: non-Newtonian "
+                            "viscosity is not implemented by meshlessFoam (Newtonian nu only); use interFoam",
+                            tm->file, tm->line, name, w);
+    }
+    int has;
+    UMP_CALL(get_transport_constant(d, "nu", d_nu, "m^2/s", 0, 1, nu, &has, err));
+    UMP_CALL(get_transport_constant(d, "rho", d_rho, "kg/m^3", 0, 1, rho, &has, err));
+    if (!(*rho > 0)) {
+        const foam_entry *e = foam_dict_find(d, "rho", 0);
+        return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s rho must be positive, found %g", e->file, e->line, name,
+                        *rho);
+    }
+    return UMP_OK;
+}
+
+ump_status case_read_phases(const char *case_dir, case_phases *ph, ump_err *err)
+{
+    static const double d_sigma[7] = {1, 0, -2, 0, 0, 0, 0};
+    char path[4096];
+    snprintf(path, sizeof path, "%s/constant/transportProperties", case_dir);
+    foam_file *f = NULL;
+    UMP_CALL(foam_file_read(path, &f, err));
+    memset(ph, 0, sizeof *ph);
+    const foam_dict *d = f->dict;
+    ump_status rc = UMP_OK;
+    const foam_entry *e = foam_dict_find(d, "phases", 0);
+    /* phases (water air): '(' word word ')' */
+    int nw = 0;
+    if (e && !e->dict && e->ntok == 4 && e->tok[0].type == FOAM_TOK_PUNCT && e->tok[0].v.punct == '(' &&
+        e->tok[3].type == FOAM_TOK_PUNCT && e->tok[3].v.punct == ')')
+        for (int k = 1; k < 3; k++)
+            if (e->tok[k].type == FOAM_TOK_WORD && strlen(e->tok[k].v.str) < sizeof ph->name[0])
+                snprintf(ph->name[nw++], sizeof ph->name[0], "%s", e->tok[k].v.str);
+    if (!e)
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: no 'phases (liquid gas);' entry: meshlessFoam runs interFoam's "
+                      "two-phase cases (phases (water air); water { nu ...; rho ...; } air { ... })", path);
+    else if (nw != 2)
+        rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: phases: expected two phases, (liquid gas) as interFoam; "
+                      "more phases (multiphaseInterFoam) are not implemented by meshlessFoam", e->file, e->line);
+    for (int k = 0; k < 2 && rc == UMP_OK; k++)
+        rc = read_phase(d, path, ph->name[k], &ph->nu[k], &ph->rho[k], err);
+    if (rc == UMP_OK)
+        rc = get_transport_constant(d, "sigma", d_sigma, "kg/s^2", 0, 0, &ph->sigma, &ph->has_sigma, err);
     foam_file_free(&f);
     return rc;
 }

@@ -21,6 +21,10 @@
 #include <string.h>
 #include <sys/stat.h>
 
+/* The solver named in the messages, and the OpenFOAM solver to use
+ * instead for the general case (set by each entry point; start-up only). */
+static const char *feat_solver = "umppmFoam", *feat_instead = "pimpleFoam";
+
 /* Read case_dir/rel if it exists (plain or .gz); *f = NULL when absent. */
 static ump_status read_optional(const char *case_dir, const char *rel, foam_file **f, ump_err *err)
 {
@@ -129,13 +133,13 @@ static ump_status check_dynamic_mesh(const char *case_dir, ump_err *err)
         if (w && strcmp(w, "interfaceTrackingFvMesh") == 0)
             rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
                           "%s:%d: dynamicFvMesh interfaceTrackingFvMesh: free-surface (multiphase) flow on an "
-                          "interface-tracking moving mesh is not implemented by umppmFoam, which solves one "
-                          "phase on a static mesh; use pimpleFoam", e->file, e->line);
+                          "interface-tracking moving mesh is not implemented by %s, which solves one "
+                          "phase on a static mesh; use pimpleFoam", e->file, e->line, feat_solver);
         else
             rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
                           "%s:%d: dynamicFvMesh %s: moving or topology-changing meshes are not implemented by "
-                          "umppmFoam (static meshes only); remove the file or set dynamicFvMesh staticFvMesh, "
-                          "or use pimpleFoam", e->file, e->line, t);
+                          "%s (static meshes only); remove the file or set dynamicFvMesh staticFvMesh, "
+                          "or use %s", e->file, e->line, t, feat_solver, feat_instead);
     }
     foam_file_free(&f);
     return rc;
@@ -149,14 +153,14 @@ static ump_status check_finite_area(const char *case_dir, ump_err *err)
         snprintf(path, sizeof path, "%s/%s", case_dir, files[i]);
         if (foam_file_exists(path))
             return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                            "%s: finite-area (faMesh) regions are not implemented by umppmFoam; remove "
+                            "%s: finite-area (faMesh) regions are not implemented by %s; remove "
                             "system/faSchemes, system/faSolution and constant/faMesh to run the volume flow "
-                            "alone", path);
+                            "alone", path, feat_solver);
     }
     if (is_dir(case_dir, "constant/faMesh"))
         return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                        "%s/constant/faMesh: finite-area (faMesh) regions are not implemented by umppmFoam; "
-                        "remove constant/faMesh to run the volume flow alone", case_dir);
+                        "%s/constant/faMesh: finite-area (faMesh) regions are not implemented by %s; "
+                        "remove constant/faMesh to run the volume flow alone", case_dir, feat_solver);
     return UMP_OK;
 }
 
@@ -200,8 +204,8 @@ static ump_status check_momentum_transport(const char *case_dir, ump_err *err)
         if (rc == UMP_OK && strcmp(w, "laminar") != 0) {
             const foam_entry *e = foam_dict_find(f->dict, "simulationType", 0);
             rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                          "%s:%d: simulationType '%s' is not supported: umppmFoam is a laminar solver "
-                          "(use simulationType laminar;)", e->file, e->line, w);
+                          "%s:%d: simulationType '%s' is not supported: %s is a laminar solver "
+                          "(use simulationType laminar;)", e->file, e->line, w, feat_solver);
         }
         const foam_dict *lam = rc == UMP_OK ? foam_dict_sub(f->dict, "laminar") : NULL;
         const foam_entry *e = lam ? foam_dict_find(lam, "laminarModel", 0) : NULL;
@@ -210,8 +214,8 @@ static ump_status check_momentum_transport(const char *case_dir, ump_err *err)
             char t[128];
             rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
                           "%s:%d: laminar { laminarModel %s; }: only the Newtonian laminarModel Stokes is "
-                          "implemented by umppmFoam (no viscoelastic stress); set laminarModel Stokes, or use "
-                          "pimpleFoam", e->file, e->line, first_word(e, t, sizeof t));
+                          "implemented by %s (no viscoelastic stress); set laminarModel Stokes, or use "
+                          "%s", e->file, e->line, first_word(e, t, sizeof t), feat_solver, feat_instead);
         }
         foam_file_free(&f);
         if (rc != UMP_OK)
@@ -245,8 +249,9 @@ static ump_status check_sources(const char *case_dir, const char *rel, const cha
         if (w)
             snprintf(type, sizeof type, ", type %s", w);
         rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                      "%s:%d: %s not implemented by umppmFoam (entry '%s'%s); remove the file (or empty it) "
-                      "to run without it, or use %s", e->file, e->line, what, e->key, type, instead);
+                      "%s:%d: %s not implemented by %s (entry '%s'%s); remove the file (or empty it) "
+                      "to run without it, or use %s", e->file, e->line, what, feat_solver, e->key, type,
+                      instead);
     }
     foam_file_free(&f);
     return rc;
@@ -299,6 +304,8 @@ ump_status feat_ddt_scheme(const char *case_dir, char *buf, size_t len, ump_err 
 
 ump_status feat_check_case(const char *case_dir, const char *tname, ump_err *err)
 {
+    feat_solver = "umppmFoam";
+    feat_instead = "pimpleFoam";
     UMP_CALL(check_multiphase(case_dir, tname, err));
     UMP_CALL(check_dynamic_mesh(case_dir, err));
     UMP_CALL(check_finite_area(case_dir, err));
@@ -319,4 +326,27 @@ ump_status feat_check_case(const char *case_dir, const char *tname, ump_err *err
         UMP_CALL(check_sources(case_dir, src[i].rel, src[i].what, src[i].instead, src[i].mrf, err));
     char ddt[128];
     return feat_ddt_scheme(case_dir, ddt, sizeof ddt, err);
+}
+
+ump_status feat_check_meshless(const char *case_dir, ump_err *err)
+{
+    feat_solver = "meshlessFoam";
+    feat_instead = "interFoam";
+    ump_status rc = check_dynamic_mesh(case_dir, err);
+    if (rc == UMP_OK)
+        rc = check_finite_area(case_dir, err);
+    if (rc == UMP_OK)
+        rc = check_momentum_transport(case_dir, err);
+    static const char *const files[] = {"constant/fvOptions", "system/fvOptions", "constant/fvConstraints",
+                                        "system/fvConstraints", "constant/porosityProperties"};
+    static const char *const what[] = {"fvOptions are", "fvOptions are", "fvConstraints are",
+                                       "fvConstraints are", "porosity zones are"};
+    for (size_t i = 0; rc == UMP_OK && i < sizeof files / sizeof files[0]; i++)
+        rc = check_sources(case_dir, files[i], what[i], "interFoam", 0, err);
+    if (rc == UMP_OK)
+        rc = check_sources(case_dir, "constant/MRFProperties", "MRF (rotating frame) zones are", "interFoam", 1,
+                           err);
+    feat_solver = "umppmFoam";
+    feat_instead = "pimpleFoam";
+    return rc;
 }

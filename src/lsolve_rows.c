@@ -686,3 +686,99 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
     }
     return UMP_OK;
 }
+
+/* ---- conjugate gradients ------------------------------------------------- */
+
+ump_status lsolve_rows_cg(lsolve_rows *k, const lsolve_csr *A, const double *b, double *x, double tol, int maxit,
+                          lsolve_stats *st, ump_err *err)
+{
+    const ump_idx n = A->n;
+    memset(st, 0, sizeof *st);
+    UMP_CHECK(tol > 0 && maxit >= 0, err, UMP_ERR_INPUT, "CG: tolerance %g, %d iterations", tol, maxit);
+    UMP_CHECK(k->pc_n == n, err, UMP_ERR_INPUT, "CG: no preconditioner was built for a matrix of order %ld",
+              (long)n);
+    /* CG needs a symmetric preconditioner: the block ILU(0) is not one */
+    UMP_CHECK(k->pc != LSOLVE_PC_ILU0, err, UMP_ERR_INPUT, "CG: the ILU0 preconditioner is not symmetric; "
+              "use Jacobi or none");
+    UMP_CALL(reserve_rows(k, n, 1, err));
+    double *r = k->vec[0][V_R], *p = k->vec[0][V_P], *q = k->vec[0][V_V], *z = k->vec[0][V_PH];
+    double *R[1] = {r}, *P[1] = {p}, *Q[1] = {q}, *Z[1] = {z}, *X[1] = {x}, *B[1] = {(double *)b};
+    double bb, rz, pq, rr;
+    dots(k, n, 1, B, B, &bb);
+    double bnorm = sqrt(bb);
+    UMP_CHECK(isfinite(bnorm), err, UMP_ERR_INPUT, "CG: right-hand side has NaN or inf");
+    if (bnorm == 0) {
+        memset(x, 0, sizeof(double) * (size_t)n); /* the exact solution */
+        st->converged = 1;
+        return UMP_OK;
+    }
+    spmv(k, A, 1, X, R);
+#pragma omp parallel for schedule(static)
+    for (ump_idx i = 0; i < n; i++)
+        r[i] = b[i] - r[i];
+    dots(k, n, 1, R, R, &rr);
+    st->res0 = st->res = sqrt(rr) / bnorm;
+    if (st->res <= tol) {
+        st->converged = 1;
+        return UMP_OK;
+    }
+    apply_pc(k, A, 1, R, Z);
+    memcpy(p, z, sizeof(double) * (size_t)n);
+    dots(k, n, 1, R, Z, &rz);
+    int it = 0;
+    while (it < maxit) {
+        spmv(k, A, 1, P, Q);     /* q <- A p */
+        dots(k, n, 1, P, Q, &pq);
+        if (!(pq > 0) || !isfinite(pq)) {
+            st->converged = -1; /* not positive definite, or NaN */
+            break;
+        }
+        double al = rz / pq;
+        it++;
+        /* x <- x + al p, r <- r - al q, and (r, r) */
+        ump_idx nb = (ump_idx)nblocks(n, LSOLVE_DOT_BLOCK);
+        double *part = k->part;
+#pragma omp parallel for schedule(static)
+        for (ump_idx c = 0; c < nb; c++) {
+            ump_idx i0 = c * LSOLVE_DOT_BLOCK, i1 = i0 + LSOLVE_DOT_BLOCK < n ? i0 + LSOLVE_DOT_BLOCK : n;
+            double acc = 0;
+            for (ump_idx i = i0; i < i1; i++) {
+                x[i] += al * p[i];
+                r[i] -= al * q[i];
+                acc += r[i] * r[i];
+            }
+            part[c] = acc;
+        }
+        rr = 0;
+        for (ump_idx c = 0; c < nb; c++)
+            rr += part[c];
+        st->res = sqrt(rr) / bnorm;
+        if (!isfinite(st->res)) {
+            st->converged = -1;
+            break;
+        }
+        if (st->res <= tol) {
+            st->converged = 1;
+            break;
+        }
+        apply_pc(k, A, 1, R, Z);
+        double rz_new;
+        dots(k, n, 1, R, Z, &rz_new);
+        double be = rz_new / rz;
+        rz = rz_new;
+#pragma omp parallel for schedule(static)
+        for (ump_idx i = 0; i < n; i++)
+            p[i] = z[i] + be * p[i];
+    }
+    st->iterations = it;
+    if (st->converged == 1) {
+        /* the recursive residual drifts: report the true one */
+        spmv(k, A, 1, X, R);
+#pragma omp parallel for schedule(static)
+        for (ump_idx i = 0; i < n; i++)
+            r[i] = b[i] - r[i];
+        dots(k, n, 1, R, R, &rr);
+        st->res = sqrt(rr) / bnorm;
+    }
+    return UMP_OK;
+}

@@ -129,6 +129,14 @@ typedef struct case_option {
     size_t offset, size;         /* the field in case_umppm */
 } case_option;
 
+/* A table of options: the sub-dictionary of system/fvSolution it reads
+ * ("UMPPM", "meshless") and its entries. */
+typedef struct case_opt_table {
+    const char *dict;
+    const case_option *opt;
+    size_t n;
+} case_opt_table;
+
 /* The options table (static storage); *n gets its length. */
 const case_option *case_umppm_options(size_t *n);
 /* What o allows, as in messages and -help: "UMPPM UMPPMstar UMPPM*",
@@ -174,6 +182,48 @@ ump_status case_read_buoyancy(const char *case_dir, case_buoyancy *b, ump_err *e
  * PIMPLE or SIMPLE sub-dictionary (first present). A missing file, or none
  * of the three dictionaries, is an error (icoFoam needs PISO). */
 ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *err);
+
+/* ---- meshlessFoam: the meshless sub-dictionary of system/fvSolution ------
+ * All keys optional, one table (case_meshless_options) as for UMPPM:
+ *   meshless { method MPS; spacing 0; reNumberDensity 3.1; reLaplacian 3.1;
+ *              beta 0.98; lambda 0; sourceTerm mixed; gamma 0.01;
+ *              collisionDistance 0.5; restitution 0.2; maxCo 0.2;
+ *              pressureTolerance 1e-8; velocityTolerance 1e-10;
+ *              maxIter 5000; cloudName meshlessCloud; maxVelocity 0; } */
+typedef struct case_meshless {
+    char method[16];             /* MPS */
+    double spacing;              /* l0 [m]; 0: from the mesh */
+    double re_n, re_lap;         /* radii / l0 */
+    double beta;                 /* free-surface threshold */
+    double lambda;               /* [m^2]; 0: Eq. 7 */
+    int source_mixed;            /* sourceTerm: 0 density, 1 mixed */
+    double gamma;
+    double collision;            /* / l0; 0: off */
+    double restitution;
+    double max_co;               /* Courant number on l0 */
+    double p_tol, u_tol;
+    long maxit;
+    char cloud_name[64];
+    double max_velocity;         /* divergence bound; 0: from g and the domain */
+} case_meshless;
+
+const case_option *case_meshless_options(size_t *n);
+void case_meshless_defaults(case_meshless *u);
+size_t case_meshless_help(char *buf, size_t len);
+/* Read the meshless sub-dictionary of <case>/system/fvSolution (absent:
+ * defaults), with the messages of case_read_umppm. */
+ump_status case_read_meshless(const char *case_dir, case_meshless *u, ump_err *err);
+
+/* interFoam's constant/transportProperties: phases (liquid gas); each
+ * phase { transportModel Newtonian; nu; rho; }; sigma. name[0] is the
+ * liquid (its alpha.<name> is the volume fraction). */
+typedef struct case_phases {
+    char name[2][64];
+    double nu[2], rho[2];
+    double sigma;
+    int has_sigma;
+} case_phases;
+ump_status case_read_phases(const char *case_dir, case_phases *ph, ump_err *err);
 
 /* 1 if name can become one path component (a cloud or function-object
  * directory): non-empty, no '/', no "..". */

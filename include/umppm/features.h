@@ -40,6 +40,12 @@ ump_status feat_check_case(const char *case_dir, const char *tname, ump_err *err
  * buf: "Euler" or "backward"; "Euler (no system/fvSchemes)" when the file
  * or its ddtSchemes is absent. Anything else is refused as by
  * feat_check_case. */
+/* The same checks for meshlessFoam, whose cases are interFoam's: the
+ * phases and alpha fields are its input, so only moving meshes,
+ * finite-area regions, turbulence or viscoelastic models and source terms
+ * (fvOptions, fvConstraints, porosity, MRF) are refused, naming
+ * meshlessFoam and interFoam. */
+ump_status feat_check_meshless(const char *case_dir, ump_err *err);
 ump_status feat_ddt_scheme(const char *case_dir, char *buf, size_t len, ump_err *err);
 
 #endif

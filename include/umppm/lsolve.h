@@ -166,4 +166,14 @@ ump_status lsolve_rows_setup(lsolve_rows *k, const lsolve_csr *A, lsolve_pc pc, 
 ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, const double *const *b,
                                 double *const *x, double tol, int maxit, lsolve_stats *st, ump_err *err);
 
+/* Preconditioned conjugate gradients (Hestenes & Stiefel 1952) on a
+ * symmetric positive definite A, from the warm start x, to relative
+ * residual tol or maxit iterations, with the preconditioner of the last
+ * lsolve_rows_setup (Jacobi or none: ILU0 is refused, it is not
+ * symmetric). The same deterministic reductions as BiCGSTAB (any thread
+ * count, the same bits). st as lsolve_bicgstab's; converged -1 when (p, Ap)
+ * is not positive (A not definite) or not finite. */
+ump_status lsolve_rows_cg(lsolve_rows *k, const lsolve_csr *A, const double *b, double *x, double tol, int maxit,
+                          lsolve_stats *st, ump_err *err);
+
 #endif

@@ -1,0 +1,780 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * mlapp.c -- the meshlessFoam time loop, driven like interFoam.
+ *
+ * The case is an interFoam (laminar) case directory as it is:
+ *   constant/polyMesh      the container: every `wall` patch is a wall
+ *                          (solid particles behind it, mlseed.h); other
+ *                          patches (the atmosphere) are open: particles
+ *                          that leave through them are removed; the mesh
+ *                          also carries the output fields;
+ *   0/alpha.<liquid>       the initial liquid region (setFields), seeded on
+ *                          a lattice of the meshless spacing; 0/U gives the
+ *                          particles' initial velocity (p_rgh is not read:
+ *                          the particles' pressure needs no boundary
+ *                          conditions; p and p_rgh are written `calculated`);
+ *   constant/transportProperties  phases (liquid gas): the liquid's nu and
+ *                          rho; the gas and sigma are read and not
+ *                          simulated (the log says so);
+ *   constant/g             gravity (in the plane of the 2-D mesh);
+ *   constant/turbulenceProperties  laminar only (features.c);
+ *   system/controlDict     deltaT, adjustTimeStep (the meshless maxCo on
+ *                          the particle spacing), writes, purgeWrite;
+ *   system/fvSolution      the meshless sub-dictionary (case.h).
+ * Refused by name before the first step: moving walls (a wall patch whose
+ * U is not zero), inflow (a fixed non-zero U on an open patch), slip,
+ * symmetry, cyclic and wedge patches, gravity out of the plane, 3-D meshes,
+ * a restart time without the particle cloud.
+ *
+ * Output at write times, into a hidden directory renamed into place
+ * (fieldio.h): the cloud lagrangian/<cloudName> (positions, U, p,
+ * numberDensity n/n0, freeSurface 0/1) and the mesh fields in interFoam's
+ * definitions: alpha.<liquid> = (particles in the cell) l0^2 / cell area,
+ * at most 1; U the mean particle velocity of the cell; p the mean particle
+ * pressure (gauge, 0 in cells without liquid); p_rgh = p - rho gh with
+ * rho = alpha rho_liquid + (1 - alpha) rho_gas, gh = g.C - ghRef (as
+ * interFoam's hydrostatic split; hRef from constant/hRef, default 0).
+ */
+#include "umppm/mlapp.h"
+#include "umppm/app.h"
+#include "umppm/case.h"
+#include "umppm/features.h"
+#include "umppm/field.h"
+#include "umppm/fieldio.h"
+#include "umppm/foam.h"
+#include "umppm/mesh2d.h"
+#include "umppm/mlseed.h"
+#include "umppm/mps.h"
+#include "umppm/particles.h"
+#include "umppm/polymesh.h"
+#include "umppm/runtime.h"
+#include "umppm/stopsig.h"
+
+#include <errno.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/time.h>
+#include <time.h>
+
+typedef struct mlapp {
+    const char *case_dir;
+    case_control ctl;
+    case_phases ph;
+    case_buoyancy bu;
+    case_meshless ml;
+    pmesh *pm;
+    mesh2d *m;
+    fld_field *alpha, *U, *prgh, *p; /* written fields (structure of the case's) */
+    unsigned char *wall_patch;       /* [npatches] */
+    part_set *s;
+    unsigned char *kinds;            /* [nsolid] */
+    mps *solver;
+    mps_params prm;
+    double g2[2];                    /* gravity in the plane */
+    double *prev_x, *prev_y;         /* fluid positions before the step [cap] */
+    ump_idx *prev_cell;
+    unsigned char *keep;
+    size_t pcap;
+    double *cnt, *su, *sv, *sp;      /* per-cell sums [ncells] */
+    double u_bound;
+    char **written;
+    int nwritten;
+} mlapp;
+
+static double wall_seconds(void)
+{
+    struct timeval tv;
+    gettimeofday(&tv, NULL);
+    return (double)tv.tv_sec + 1e-6 * (double)tv.tv_usec;
+}
+
+static void mlapp_free(mlapp *a)
+{
+    fld_free(&a->alpha);
+    fld_free(&a->U);
+    fld_free(&a->prgh);
+    fld_free(&a->p);
+    free(a->wall_patch);
+    mps_free(&a->solver);
+    part_free(&a->s);
+    free(a->kinds);
+    free(a->prev_x);
+    free(a->prev_y);
+    free(a->prev_cell);
+    free(a->keep);
+    free(a->cnt);
+    free(a->su);
+    free(a->sv);
+    free(a->sp);
+    for (int i = 0; i < a->nwritten; i++)
+        free(a->written[i]);
+    free(a->written);
+    mesh_free(&a->m);
+    pmesh_free(&a->pm);
+}
+
+/* ---- set-up ---------------------------------------------------------------- */
+
+static ump_status read_field(mlapp *a, const char *tname, const char *name, int ncomp, fld_field **out,
+                             ump_err *err)
+{
+    char path[4400];
+    snprintf(path, sizeof path, "%s/%s/%s", a->case_dir, tname, name);
+    printf("Reading field %s\n\n", name);
+    return fio_read_field(path, a->pm, ncomp, out, err);
+}
+
+/* 1 if the face values of patch p of field f are all zero. */
+static int patch_zero(const fld_field *f, int p)
+{
+    const fld_patch *fp = &f->patch[p];
+    for (size_t k = 0; k < (size_t)fp->n * (size_t)f->ncomp; k++)
+        if (fp->value[k] != 0)
+            return 0;
+    return 1;
+}
+
+/* The boundary: wall patches, open patches, and what is refused. */
+static ump_status check_boundary(mlapp *a, ump_err *err)
+{
+    const pmesh *pm = a->pm;
+    a->wall_patch = ump_alloc_array((size_t)pm->npatches + 1, 1);
+    UMP_CHECK(a->wall_patch, err, UMP_ERR_NOMEM, "out of memory");
+    int nwall = 0;
+    for (int p = 0; p < pm->npatches; p++) {
+        const pmesh_patch *pp = &pm->patch[p];
+        const fld_patch *up = &a->U->patch[p];
+        switch (pp->kind) {
+        case PMESH_EMPTY:
+            continue;
+        case PMESH_WALL:
+            if (!((up->type == FLD_BC_NOSLIP) || (up->type == FLD_BC_FIXEDVALUE && patch_zero(a->U, p))))
+                return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                                "%s/0/U: wall patch '%s' has U %s%s: meshlessFoam's walls are fixed and "
+                                "no-slip (noSlip or fixedValue (0 0 0)); moving walls and slip walls are not "
+                                "implemented in this version; use interFoam", a->case_dir, pp->name,
+                                fld_bc_name(up->type), up->type == FLD_BC_FIXEDVALUE ? " (not zero)" : "");
+            a->wall_patch[p] = 1;
+            nwall++;
+            continue;
+        case PMESH_PATCH:
+            if (fld_bc_is_fixed(up->type) && up->type != FLD_BC_TOTALPRESSURE && !patch_zero(a->U, p))
+                return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                                "%s/0/U: patch '%s' has a fixed non-zero U (%s): inflow boundaries are not "
+                                "implemented by meshlessFoam (open patches only let liquid leave); use "
+                                "interFoam", a->case_dir, pp->name, fld_bc_name(up->type));
+            continue;
+        default:
+            return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                            "%s/constant/polyMesh/boundary: patch '%s' of type %s: meshlessFoam implements wall "
+                            "patches (solid particles) and open patches (type patch) only; symmetry, cyclic "
+                            "and wedge patches are not implemented; use interFoam", a->case_dir, pp->name,
+                            pp->type);
+        }
+    }
+    UMP_CHECK(nwall > 0, err, UMP_ERR_INPUT,
+              "%s/constant/polyMesh/boundary: no patch of type wall: meshlessFoam needs a container (its wall "
+              "patches)", a->case_dir);
+    return UMP_OK;
+}
+
+static ump_status read_case(mlapp *a, const char *tname, ump_err *err)
+{
+    printf("Reading transportProperties\n\n");
+    UMP_CALL(case_read_phases(a->case_dir, &a->ph, err));
+    UMP_CALL(case_read_buoyancy(a->case_dir, &a->bu, err));
+    UMP_CHECK(a->bu.on, err, UMP_ERR_INPUT,
+              "%s/constant/g: missing: meshlessFoam needs gravity (uniformDimensionedVectorField g, as interFoam)",
+              a->case_dir);
+    const mesh2d *m = a->m;
+    if (fabs(a->bu.g[m->normal]) > 1e-12 * (fabs(a->bu.g[0]) + fabs(a->bu.g[1]) + fabs(a->bu.g[2]) + 1e-300))
+        return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                        "%s/constant/g: gravity (%g %g %g) has a component normal to the plane of the 2-D mesh "
+                        "(%c): meshlessFoam solves in the plane only", a->case_dir, a->bu.g[0], a->bu.g[1],
+                        a->bu.g[2], "xyz"[m->normal]);
+    a->g2[0] = a->bu.g[m->ax[0]];
+    a->g2[1] = a->bu.g[m->ax[1]];
+    UMP_CALL(case_read_meshless(a->case_dir, &a->ml, err));
+    char name[128];
+    snprintf(name, sizeof name, "alpha.%s", a->ph.name[0]);
+    UMP_CALL(read_field(a, tname, name, 1, &a->alpha, err));
+    UMP_CALL(read_field(a, tname, "U", 3, &a->U, err));
+    for (ump_idx c = 0; c < m->ncells; c++)
+        if (!(a->alpha->internal[c] >= -1e-6 && a->alpha->internal[c] <= 1 + 1e-6))
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s/%s/%s: cell %ld has the volume fraction %g, outside [0, 1]",
+                            a->case_dir, tname, name, (long)c, a->alpha->internal[c]);
+    UMP_CALL(check_boundary(a, err));
+    /* p and p_rgh: calculated (their values are the particles'; interFoam's
+     * boundary conditions on p_rgh are not read: the pressure of the
+     * particles needs none) */
+    ump_idx *sizes = ump_alloc_array((size_t)a->pm->npatches + 1, sizeof *sizes);
+    UMP_CHECK(sizes, err, UMP_ERR_NOMEM, "out of memory");
+    for (int p = 0; p < a->pm->npatches; p++)
+        sizes[p] = a->pm->patch[p].n;
+    ump_status rc = fld_create("p", 1, m->ncells, a->pm->npatches, sizes, &a->p, err);
+    if (rc == UMP_OK)
+        rc = fld_create("p_rgh", 1, m->ncells, a->pm->npatches, sizes, &a->prgh, err);
+    free(sizes);
+    UMP_CALL(rc);
+    fld_field *pf[2] = {a->p, a->prgh};
+    for (int q = 0; q < 2; q++) {
+        pf[q]->dims[0] = 1, pf[q]->dims[1] = -1, pf[q]->dims[2] = -2; /* kg m^-1 s^-2 */
+        for (int p = 0; p < a->pm->npatches; p++)
+            if (a->pm->patch[p].kind == PMESH_EMPTY)
+                pf[q]->patch[p].type = FLD_BC_EMPTY;
+    }
+    return UMP_OK;
+}
+
+/* The particles: seeded from alpha (start time without a cloud) or read
+ * back from the start time's cloud (a restart). */
+static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
+{
+    const mesh2d *m = a->m;
+    double l0 = a->ml.spacing > 0 ? a->ml.spacing : mlseed_default_spacing(m);
+    UMP_CHECK(l0 > 0, err, UMP_ERR_INPUT, "meshless: no particle spacing");
+    mps_params *P = &a->prm;
+    memset(P, 0, sizeof *P);
+    P->l0 = l0;
+    P->re_n = a->ml.re_n;
+    P->re_lap = a->ml.re_lap;
+    P->beta = a->ml.beta;
+    P->lambda = a->ml.lambda;
+    P->rho = a->ph.rho[0];
+    P->nu = a->ph.nu[0];
+    P->g[0] = a->g2[0];
+    P->g[1] = a->g2[1];
+    P->source = a->ml.source_mixed ? MPS_SOURCE_MIXED : MPS_SOURCE_DENSITY;
+    P->gamma = a->ml.gamma;
+    P->collision = a->ml.collision;
+    P->restitution = a->ml.restitution;
+    P->p_tol = a->ml.p_tol;
+    P->u_tol = a->ml.u_tol;
+    P->maxit = (int)(a->ml.maxit > 1000000000L ? 1000000000L : a->ml.maxit);
+    /* wall particles within r_e(n) of the wall; dummies so that every wall
+     * particle has a full neighbourhood and every fluid particle a full
+     * Laplacian stencil (docs/METHOD.md section 12.2) */
+    double wall_depth = P->re_n * l0, thick = fmax(2 * P->re_n, P->re_lap + 0.5) * l0;
+    UMP_CALL(part_create(1024, &a->s, err));
+    double *uc = ump_alloc_array((size_t)m->ncells + 1, sizeof *uc), *vc = ump_alloc_array((size_t)m->ncells + 1,
+                                                                                         sizeof *vc);
+    UMP_CHECK(uc && vc, err, UMP_ERR_NOMEM, "out of memory");
+    for (ump_idx c = 0; c < m->ncells; c++) {
+        uc[c] = a->U->internal[3 * (size_t)c + (size_t)m->ax[0]];
+        vc[c] = a->U->internal[3 * (size_t)c + (size_t)m->ax[1]];
+    }
+    mlseed_stats ss;
+    ump_status rc = mlseed_build(m, a->alpha->internal, uc, vc, a->wall_patch, l0, wall_depth, thick, a->s,
+                                 &a->kinds, &ss, err);
+    free(uc);
+    free(vc);
+    UMP_CALL(rc);
+    size_t ns = ss.nwall + ss.ndummy;
+    /* a restart: the fluid particles of the start time's cloud */
+    char dir[4400], cdir[4600];
+    snprintf(dir, sizeof dir, "%s/%s", a->case_dir, tname);
+    snprintf(cdir, sizeof cdir, "%s/lagrangian/%s/positions", dir, a->ml.cloud_name);
+    int restart = foam_file_exists(cdir);
+    if (restart) {
+        size_t n;
+        double *pos = NULL, *vel = NULL;
+        int64_t *id = NULL;
+        ump_idx *cell = NULL;
+        UMP_CALL(fio_read_cloud(dir, a->ml.cloud_name, &n, &pos, &vel, &id, &cell, err));
+        a->s->n = ns;
+        int64_t next = 0;
+        for (size_t i = 0; i < n && rc == UMP_OK; i++) {
+            double x = pos[3 * i + (size_t)m->ax[0]], y = pos[3 * i + (size_t)m->ax[1]];
+            ump_idx c = -1, f = -1;
+            part_where w = part_locate(m, cell[i], &x, &y, &c, &f);
+            if (w != PART_INSIDE) {
+                rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s/lagrangian/%s/positions: particle %zu at (%g %g) is not "
+                              "inside the mesh", dir, a->ml.cloud_name, i, x, y);
+                break;
+            }
+            size_t k;
+            rc = part_add(a->s, x, y, vel[3 * i + (size_t)m->ax[0]], vel[3 * i + (size_t)m->ax[1]], 0, c, &k, err);
+            if (rc == UMP_OK && id[i] >= 0) {
+                a->s->id[k] = id[i];
+                next = id[i] + 1 > next ? id[i] + 1 : next;
+            }
+        }
+        a->s->next_id = next > a->s->next_id ? next : a->s->next_id;
+        free(pos);
+        free(vel);
+        free(id);
+        free(cell);
+        UMP_CALL(rc);
+    } else {
+        /* ids count fluid particles from 0 */
+        int64_t id = 0;
+        for (size_t i = ns; i < a->s->n; i++)
+            a->s->id[i] = id++;
+        a->s->next_id = id;
+    }
+    UMP_CALL(mps_create(P, a->s, ns, a->kinds, &a->solver, err));
+    double n0n, n0l, lam;
+    mps_constants(a->solver, &n0n, &n0l, &lam);
+    printf("Particles: spacing l0 = %g m (%s), lattice origin (%g %g)\n", l0,
+           a->ml.spacing > 0 ? "meshless spacing" : "half the median cell size", ss.x0, ss.y0);
+    if (restart)
+        printf("    fluid:  %zu from the cloud %s/lagrangian/%s (restart)\n", a->s->n - ns, tname,
+               a->ml.cloud_name);
+    else
+        printf("    fluid:  %zu (lattice points in cells with alpha.%s >= 0.5)\n", ss.nfluid, a->ph.name[0]);
+    printf("    walls:  %zu wall particles (within %g m of the wall patches), %zu dummy particles (to %g m)\n",
+           ss.nwall, wall_depth, ss.ndummy, thick);
+    printf("MPS: r_e = %g l0 (number density, gradient), %g l0 (Laplacian); n0 = %.6g, %.6g; lambda = %.6g m^2 "
+           "(%s); beta %g; source %s", P->re_n, P->re_lap, n0n, n0l, lam, a->ml.lambda > 0 ? "given" : "Eq. 7",
+           P->beta, P->source == MPS_SOURCE_DENSITY ? "density (Eq. 18)" : "mixed");
+    if (P->source == MPS_SOURCE_MIXED)
+        printf(" (gamma %g)", P->gamma);
+    if (P->collision > 0)
+        printf("; collisions below %g l0 (restitution %g)\n", P->collision, P->restitution);
+    else
+        printf("; no collision model\n");
+    return UMP_OK;
+}
+
+/* ---- output ----------------------------------------------------------------- */
+
+/* Mesh fields from the particles (see the top of the file). */
+static ump_status fill_fields(mlapp *a, ump_err *err)
+{
+    const mesh2d *m = a->m;
+    const part_set *s = a->s;
+    size_t ns = mps_nsolid(a->solver), nc = (size_t)m->ncells;
+    if (!a->cnt) {
+        a->cnt = ump_alloc_array(nc + 1, sizeof *a->cnt);
+        a->su = ump_alloc_array(nc + 1, sizeof *a->su);
+        a->sv = ump_alloc_array(nc + 1, sizeof *a->sv);
+        a->sp = ump_alloc_array(nc + 1, sizeof *a->sp);
+        UMP_CHECK(a->cnt && a->su && a->sv && a->sp, err, UMP_ERR_NOMEM, "out of memory");
+    }
+    memset(a->cnt, 0, nc * sizeof *a->cnt);
+    memset(a->su, 0, nc * sizeof *a->su);
+    memset(a->sv, 0, nc * sizeof *a->sv);
+    memset(a->sp, 0, nc * sizeof *a->sp);
+    const double *pr = mps_pressure(a->solver);
+    for (size_t i = ns; i < s->n; i++) {
+        ump_idx c = s->cell[i];
+        if (c < 0)
+            continue;
+        a->cnt[c] += 1;
+        a->su[c] += s->u[i];
+        a->sv[c] += s->v[i];
+        a->sp[c] += pr[i];
+    }
+    double l02 = a->prm.l0 * a->prm.l0, rl = a->ph.rho[0], rg = a->ph.rho[1];
+    double gmag = sqrt(a->bu.g[0] * a->bu.g[0] + a->bu.g[1] * a->bu.g[1] + a->bu.g[2] * a->bu.g[2]);
+    double ghref = -gmag * (a->bu.has_h_ref ? a->bu.h_ref : 0.0);
+    for (size_t c = 0; c < nc; c++) {
+        double k = a->cnt[c], al = fmin(1.0, k * l02 / m->area[c]);
+        double *U = a->U->internal + 3 * c;
+        U[0] = U[1] = U[2] = 0;
+        double p = 0;
+        if (k > 0) {
+            U[m->ax[0]] = a->su[c] / k;
+            U[m->ax[1]] = a->sv[c] / k;
+            p = a->sp[c] / k;
+        }
+        double C[3];
+        mesh_to3d(m, m->cx[c], m->cy[c], C);
+        double gh = a->bu.g[0] * C[0] + a->bu.g[1] * C[1] + a->bu.g[2] * C[2] - ghref;
+        a->alpha->internal[c] = al;
+        a->p->internal[c] = p;
+        a->prgh->internal[c] = p - (al * rl + (1 - al) * rg) * gh;
+    }
+    /* boundary values: prescribed ones stay, the others take the cell's */
+    fld_field *F[4] = {a->alpha, a->U, a->prgh, a->p};
+    for (int q = 0; q < 4; q++) {
+        fld_field *f = F[q];
+        for (int p = 0; p < a->pm->npatches; p++) {
+            fld_patch *fp = &f->patch[p];
+            if (fp->type == FLD_BC_EMPTY || fld_bc_is_fixed(fp->type))
+                continue;
+            const pmesh_patch *pp = &a->pm->patch[p];
+            for (ump_idx i = 0; i < fp->n; i++) {
+                ump_idx c = a->pm->owner[pp->start + i];
+                for (int k = 0; k < f->ncomp; k++)
+                    fp->value[(size_t)i * (size_t)f->ncomp + (size_t)k] =
+                        f->internal[(size_t)c * (size_t)f->ncomp + (size_t)k];
+            }
+        }
+    }
+    return UMP_OK;
+}
+
+static ump_status write_time(mlapp *a, const rt_time *t, ump_err *err)
+{
+    UMP_CALL(fill_fields(a, err));
+    fio_timedir td;
+    fio_format fmt = {a->ctl.write_binary, a->ctl.write_precision, a->ctl.write_compression};
+    UMP_CALL(fio_timedir_begin(a->case_dir, t->name, &td, err));
+    const part_set *s = a->s;
+    const mesh2d *m = a->m;
+    size_t ns = mps_nsolid(a->solver), nf = s->n - ns;
+    double *pos = ump_alloc_array(3 * nf + 3, sizeof *pos), *vel = ump_alloc_array(3 * nf + 3, sizeof *vel);
+    double *sc = ump_alloc_array(nf + 1, sizeof *sc);
+    ump_status rc = UMP_OK;
+    if (!pos || !vel || !sc) {
+        rc = UMP_FAIL(err, UMP_ERR_NOMEM, "writing the cloud: out of memory");
+        goto fail;
+    }
+    for (size_t k = 0; k < nf; k++) {
+        size_t i = ns + k;
+        mesh_to3d(m, s->x[i], s->y[i], pos + 3 * k);
+        vel[3 * k + (size_t)m->normal] = 0;
+        vel[3 * k + (size_t)m->ax[0]] = s->u[i];
+        vel[3 * k + (size_t)m->ax[1]] = s->v[i];
+    }
+    fld_field *F[4] = {a->alpha, a->U, a->prgh, a->p};
+    for (int q = 0; q < 4 && rc == UMP_OK; q++)
+        rc = fio_write_field(td.tmp_dir, t->name, a->pm, F[q], &fmt, err);
+    if (rc == UMP_OK)
+        rc = fio_write_cloud(td.tmp_dir, t->name, a->ml.cloud_name, nf, pos, vel, s->cell + ns, s->id + ns,
+                             a->ctl.write_precision, err);
+    if (rc == UMP_OK)
+        rc = fio_write_cloud_field(td.tmp_dir, t->name, a->ml.cloud_name, "p", 1, nf, mps_pressure(a->solver) + ns,
+                                   a->ctl.write_precision, err);
+    if (rc == UMP_OK)
+        rc = fio_write_cloud_field(td.tmp_dir, t->name, a->ml.cloud_name, "numberDensity", 1, nf,
+                                   mps_density(a->solver) + ns, a->ctl.write_precision, err);
+    if (rc == UMP_OK) {
+        const unsigned char *fs = mps_surface(a->solver);
+        for (size_t k = 0; k < nf; k++)
+            sc[k] = fs[ns + k];
+        rc = fio_write_cloud_field(td.tmp_dir, t->name, a->ml.cloud_name, "freeSurface", 1, nf, sc,
+                                   a->ctl.write_precision, err);
+    }
+    if (rc == UMP_OK)
+        rc = fio_write_uniform_time(td.tmp_dir, t->name, t->value, t->name, t->index, t->delta_t, t->delta_t0,
+                                    a->ctl.write_precision, a->ctl.time_format_fixed, err);
+    if (rc == UMP_OK)
+        rc = fio_timedir_commit(&td, err);
+    if (rc != UMP_OK)
+        goto fail;
+    free(pos);
+    free(vel);
+    free(sc);
+    if (a->ctl.purge_write > 0) {
+        char **w = ump_realloc_array(a->written, (size_t)a->nwritten + 1, sizeof *w);
+        UMP_CHECK(w, err, UMP_ERR_NOMEM, "out of memory");
+        a->written = w;
+        w[a->nwritten++] = ump_strdup(t->name);
+        while (a->nwritten > a->ctl.purge_write) {
+            UMP_CALL(fio_remove_timedir(a->case_dir, w[0], err));
+            free(w[0]);
+            memmove(w, w + 1, (size_t)(a->nwritten - 1) * sizeof *w);
+            a->nwritten--;
+        }
+    }
+    return UMP_OK;
+fail:
+    free(pos);
+    free(vel);
+    free(sc);
+    fio_timedir_abort(&td);
+    return rc;
+}
+
+/* ---- the step --------------------------------------------------------------- */
+
+static ump_status reserve_prev(mlapp *a, ump_err *err)
+{
+    size_t n = a->s->n;
+    if (n <= a->pcap)
+        return UMP_OK;
+    size_t nc = n + n / 2 + 16;
+    double *x = ump_realloc_array(a->prev_x, nc, sizeof *x);
+    UMP_CHECK(x, err, UMP_ERR_NOMEM, "out of memory");
+    a->prev_x = x;
+    double *y = ump_realloc_array(a->prev_y, nc, sizeof *y);
+    UMP_CHECK(y, err, UMP_ERR_NOMEM, "out of memory");
+    a->prev_y = y;
+    ump_idx *c = ump_realloc_array(a->prev_cell, nc, sizeof *c);
+    UMP_CHECK(c, err, UMP_ERR_NOMEM, "out of memory");
+    a->prev_cell = c;
+    unsigned char *k = ump_realloc_array(a->keep, nc, sizeof *k);
+    UMP_CHECK(k, err, UMP_ERR_NOMEM, "out of memory");
+    a->keep = k;
+    a->pcap = nc;
+    return UMP_OK;
+}
+
+/* Locate the moved fluid particles on the mesh. One that crossed a wall
+ * face goes back to where it started the step and loses the part of its
+ * velocity that points into that wall (the wall particles normally keep it
+ * out; this is the safety net, counted in the log); one that left through
+ * an open patch is removed. */
+static ump_status relocate(mlapp *a, size_t *left, size_t *walled, size_t *lost, ump_err *err)
+{
+    part_set *s = a->s;
+    const mesh2d *m = a->m;
+    size_t ns = mps_nsolid(a->solver), n = s->n, nl = 0, nw = 0, nx = 0;
+    for (size_t i = 0; i < ns; i++)
+        a->keep[i] = 1;
+#pragma omp parallel for schedule(static) reduction(+ : nl, nw, nx)
+    for (size_t i = ns; i < n; i++) {
+        a->keep[i] = 1;
+        double x = s->x[i], y = s->y[i];
+        ump_idx c = -1, f = -1;
+        part_where w = part_locate(m, a->prev_cell[i], &x, &y, &c, &f);
+        if (w == PART_INSIDE) {
+            s->cell[i] = c;
+            continue;
+        }
+        if (w == PART_LEFT && a->wall_patch[m->face_patch[f]]) {
+            s->x[i] = a->prev_x[i];
+            s->y[i] = a->prev_y[i];
+            s->cell[i] = a->prev_cell[i];
+            double un = s->u[i] * m->nx[f] + s->v[i] * m->ny[f];
+            if (un > 0) {
+                s->u[i] -= un * m->nx[f];
+                s->v[i] -= un * m->ny[f];
+            }
+            nw++;
+            continue;
+        }
+        a->keep[i] = 0;
+        if (w == PART_LEFT)
+            nl++;
+        else
+            nx++;
+    }
+    if (nl + nx > 0) {
+        size_t nb = s->n;
+        part_compact(s, a->keep);
+        mps_compact(a->solver, a->keep, nb);
+    }
+    *left = nl;
+    *walled = nw;
+    *lost = nx;
+    (void)err;
+    return UMP_OK;
+}
+
+/* |U| max and mean of the fluid particles. */
+static void speeds(const mlapp *a, double *umax, double *umean, size_t *imax)
+{
+    const part_set *s = a->s;
+    size_t ns = mps_nsolid(a->solver);
+    double mx = 0, sum = 0;
+    size_t im = ns;
+    for (size_t i = ns; i < s->n; i++) {
+        double q = hypot(s->u[i], s->v[i]);
+        sum += q;
+        if (q > mx || !(q == q)) {
+            mx = q == q ? q : HUGE_VAL;
+            im = i;
+        }
+    }
+    *umax = mx;
+    *umean = s->n > ns ? sum / (double)(s->n - ns) : 0;
+    if (imax)
+        *imax = im;
+}
+
+/* sqrt(|g| H), H the extent of the liquid along g. */
+static double wave_speed(const mlapp *a)
+{
+    const part_set *s = a->s;
+    double g = hypot(a->g2[0], a->g2[1]);
+    if (g == 0)
+        return 0;
+    double ex = a->g2[0] / g, ey = a->g2[1] / g, lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (size_t i = mps_nsolid(a->solver); i < s->n; i++) {
+        double h = s->x[i] * ex + s->y[i] * ey;
+        lo = fmin(lo, h);
+        hi = fmax(hi, h);
+    }
+    return hi > lo ? sqrt(g * (hi - lo + a->prm.l0)) : 0;
+}
+
+ump_status mlapp_run(const char *case_dir, ump_err *err)
+{
+    mlapp a;
+    memset(&a, 0, sizeof a);
+    a.case_dir = case_dir;
+    ump_status rc;
+    char tname[256], pmdir[4096];
+    double t0, wall0 = wall_seconds();
+    clock_t cpu0 = clock();
+    printf("Create time\n\n");
+    if ((rc = app_recover(case_dir, err)) != UMP_OK || (rc = case_read_control(case_dir, &a.ctl, err)) != UMP_OK ||
+        (rc = case_start_dir(case_dir, &a.ctl, tname, sizeof tname, &t0, err)) != UMP_OK ||
+        (rc = case_check_start(case_dir, &a.ctl, tname, t0, err)) != UMP_OK ||
+        (rc = feat_check_meshless(case_dir, err)) != UMP_OK)
+        goto done;
+    snprintf(pmdir, sizeof pmdir, "%s/constant/polyMesh", case_dir);
+    printf("Create mesh for time = %s\n\n", tname);
+    if ((rc = pmesh_read(pmdir, &a.pm, err)) != UMP_OK || (rc = mesh_build(a.pm, &a.m, err)) != UMP_OK ||
+        (rc = read_case(&a, tname, err)) != UMP_OK)
+        goto done;
+    printf("Phases: %s (nu %g m^2/s, rho %g kg/m^3) is simulated as particles; %s (nu %g, rho %g) is not "
+           "simulated: the gas is a void at pressure 0 (the free surface), its rho only enters p_rgh\n",
+           a.ph.name[0], a.ph.nu[0], a.ph.rho[0], a.ph.name[1], a.ph.nu[1], a.ph.rho[1]);
+    if (a.ph.has_sigma && a.ph.sigma != 0)
+        printf("Surface tension: sigma %g is read and not simulated (not implemented by meshlessFoam)\n",
+               a.ph.sigma);
+    printf("Gravity: (%g %g) in the plane (%c %c)\n\n", a.g2[0], a.g2[1], "xyz"[a.m->ax[0]], "xyz"[a.m->ax[1]]);
+    double tb = wall_seconds();
+    if ((rc = make_particles(&a, tname, err)) != UMP_OK)
+        goto done;
+    printf("Set-up: %.3g s\n", wall_seconds() - tb);
+    printf("Threads: %d (OpenMP; set OMP_NUM_THREADS to change)\n\n",
+#ifdef _OPENMP
+           omp_get_max_threads()
+#else
+           1
+#endif
+    );
+    /* divergence guard: 10 x the free-fall speed over the container's height */
+    {
+        double ymin = HUGE_VAL, ymax = -HUGE_VAL, xmin = HUGE_VAL, xmax = -HUGE_VAL;
+        for (ump_idx k = 0; k < a.m->nverts; k++) {
+            ymin = fmin(ymin, a.m->vy[k]);
+            ymax = fmax(ymax, a.m->vy[k]);
+            xmin = fmin(xmin, a.m->vx[k]);
+            xmax = fmax(xmax, a.m->vx[k]);
+        }
+        double g = hypot(a.g2[0], a.g2[1]), H = fmax(ymax - ymin, xmax - xmin);
+        a.u_bound = a.ml.max_velocity > 0 ? a.ml.max_velocity : 10 * sqrt(2 * g * H) + 1e-300;
+        double umax, umean;
+        speeds(&a, &umax, &umean, NULL);
+        if (a.ml.max_velocity == 0 && umax > 0.1 * a.u_bound)
+            a.u_bound = 10 * umax;
+        printf("Divergence guard: |U| <= %g m/s (%s)\n", a.u_bound,
+               a.ml.max_velocity > 0 ? "meshless maxVelocity" : "10 x the free-fall speed over the container");
+    }
+    rt_time t;
+    rt_init(&t, &a.ctl, t0, tname);
+    t.ctl.max_co = a.ml.max_co; /* adjustTimeStep keeps the particle Courant number */
+    if (stopsig_install() != 0)
+        printf("--> meshlessFoam Warning: cannot install the SIGINT/SIGTERM handler: %s\n", strerror(errno));
+    /* The step's Courant number uses the speed max(|U|max, sqrt(|g| H)),
+     * H the depth of the liquid along g: the celerity of shallow-water
+     * gravity waves, which the explicit free surface must resolve even at
+     * rest (measured: the hydrostatic tank, l0 = 5 mm, depth 0.3 m, is
+     * stable at Co 0.17 on this speed and diverges at 0.34). */
+    const double l0 = a.prm.l0;
+    double umax, umean, u_g = wave_speed(&a);
+    speeds(&a, &umax, &umean, NULL);
+    if (a.ctl.adjust_time_step)
+        rt_set_initial_delta_t(&t, fmax(umax, u_g) * t.delta_t / l0);
+    if (a.ctl.adjust_time_step)
+        printf("adjustTimeStep: maxCo %g on the particle spacing (meshless maxCo; controlDict's maxCo %g is "
+               "interFoam's cell Courant number and is not used), speed max(|U|, sqrt(|g| H) = %g m/s)\n",
+               a.ml.max_co, a.ctl.max_co, u_g);
+    printf("\nStarting time loop\n\n");
+    long step = 0;
+    size_t run_left = 0, run_walled = 0, run_lost = 0;
+    double stage_cpu[5] = {0}, stage_wall[5] = {0};
+    static const char *const stage_name[5] = {"neighbours, number density", "viscosity (implicit, CG)",
+                                              "pressure (PPE, CG)", "correction", "locate on the mesh"};
+    while (rt_running(&t)) {
+        speeds(&a, &umax, &umean, NULL);
+        u_g = wave_speed(&a);
+        printf("Courant Number mean: %g max: %g\n", umean * t.delta_t / l0, umax * t.delta_t / l0);
+        if (a.ctl.adjust_time_step) {
+            rt_adjust_delta_t(&t, fmax(umax, u_g) * t.delta_t / l0);
+            printf("deltaT = %g\n", t.delta_t);
+        }
+        rt_advance(&t);
+        if (t.precision_raised)
+            printf("--> meshlessFoam Warning: increased the timePrecision to %d to distinguish between "
+                   "timeNames at time %s\n", t.precision, t.name);
+        printf("Time = %s\n\n", t.name);
+        if ((rc = reserve_prev(&a, err)) != UMP_OK)
+            goto done;
+        size_t ns = mps_nsolid(a.solver);
+        for (size_t i = ns; i < a.s->n; i++) {
+            a.prev_x[i] = a.s->x[i];
+            a.prev_y[i] = a.s->y[i];
+            a.prev_cell[i] = a.s->cell[i];
+        }
+        mps_stats st;
+        if ((rc = mps_step(a.solver, t.delta_t, &st, err)) != UMP_OK)
+            goto done;
+        double c1 = (double)clock() / CLOCKS_PER_SEC, w1 = wall_seconds();
+        size_t left, walled, lost;
+        if ((rc = relocate(&a, &left, &walled, &lost, err)) != UMP_OK)
+            goto done;
+        for (int k = 0; k < 4; k++) {
+            stage_cpu[k] += st.cpu[k];
+            stage_wall[k] += st.wall[k];
+        }
+        stage_cpu[4] += (double)clock() / CLOCKS_PER_SEC - c1;
+        stage_wall[4] += wall_seconds() - w1;
+        run_left += left;
+        run_walled += walled;
+        run_lost += lost;
+        printf("MPS: %zu fluid particles, %zu on the free surface, %zu pressure unknowns, %zu collisions; "
+               "n*/n0 min %.4g max %.4g\n", st.nfluid, st.nsurface, st.nunknowns, st.collisions, st.n_min, st.n_max);
+        if (a.prm.nu > 0)
+            for (int d = 0; d < 2; d++)
+                printf("DICPCG:  Solving for %s, Initial residual = %g, Final residual = %g, No Iterations %d\n",
+                       a.m->ax[d] == 0 ? "Ux" : a.m->ax[d] == 1 ? "Uy" : "Uz", st.visc[d].res0, st.visc[d].res,
+                       st.visc[d].iterations);
+        printf("DICPCG:  Solving for p, Initial residual = %g, Final residual = %g, No Iterations %d\n",
+               st.pres.res0, st.pres.res, st.pres.iterations);
+        printf("Pressure: min %g max %g Pa\n", st.p_min, st.p_max);
+        printf("Particles: %zu (left through open boundaries %zu, stopped at walls %zu%s)\n",
+               a.s->n - mps_nsolid(a.solver), left, walled, lost ? ", LOST" : "");
+        if (lost)
+            printf("--> meshlessFoam Warning: %zu particles could not be located on the mesh and were removed\n",
+                   lost);
+        size_t imax;
+        speeds(&a, &umax, &umean, &imax);
+        if (!(umax <= a.u_bound)) {
+            rc = UMP_FAIL(err, UMP_ERR_INPUT,
+                          "the run has diverged at time %s: particle %lld at (%g %g) has |U| = %g m/s > %g "
+                          "(meshless maxVelocity; 0: 10 x the free-fall speed); nothing of this step was "
+                          "written. Reduce deltaT or meshless maxCo", t.name, (long long)a.s->id[imax],
+                          a.s->x[imax], a.s->y[imax], umax, a.u_bound);
+            goto done;
+        }
+        step++;
+        int sig = stopsig_pending();
+        if (sig)
+            t.write_time = 1;
+        if (t.write_time && (rc = write_time(&a, &t, err)) != UMP_OK)
+            goto done;
+        printf("ExecutionTime = %.4g s  ClockTime = %.0f s\n\n", (double)(clock() - cpu0) / CLOCKS_PER_SEC,
+               wall_seconds() - wall0);
+        if (sig)
+            printf("sigStopAtWriteNow : %s received: time %s written, stopping (stopAt writeNow)\n\n",
+                   stopsig_name(sig), t.name);
+        errno = 0;
+        if (fflush(stdout) != 0 || ferror(stdout)) {
+            rc = UMP_FAIL(err, UMP_ERR_IO, "standard output: cannot write the log (%s); stopped after time %s",
+                          errno ? strerror(errno) : "write error", t.name);
+            goto done;
+        }
+        if (sig)
+            break;
+    }
+    if (step > 0) {
+        double tc = 0, tw = 0;
+        for (int k = 0; k < 5; k++) {
+            tc += stage_cpu[k];
+            tw += stage_wall[k];
+        }
+        printf("Time by stage over %ld steps (CPU s, wall s, share of wall):\n", step);
+        for (int k = 0; k < 5; k++)
+            printf("    %-34s %9.3f %9.3f %5.1f %%\n", stage_name[k], stage_cpu[k], stage_wall[k],
+                   tw > 0 ? 100 * stage_wall[k] / tw : 0.0);
+        printf("    %-34s %9.3f %9.3f\n\n", "total", tc, tw);
+        printf("Particles over %ld steps: %zu left through open boundaries, %zu moves stopped at walls "
+               "(none lost through walls)%s\n\n", step, run_left, run_walled,
+               run_lost ? "; some could not be located (see the warnings)" : "");
+    }
+    rc = UMP_OK;
+done:
+    mlapp_free(&a);
+    return rc;
+}

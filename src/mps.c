@@ -1,0 +1,741 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * mps.c -- the fully implicit MPS step (see mps.h and docs/METHOD.md
+ * section 12).
+ *
+ * Layout: the part_set holds solid particles [0, ns) then fluid particles
+ * [ns, n). Per-particle arrays of this module (pressure, number density,
+ * flags) have the same indexing. Each stage rebuilds what it needs:
+ *
+ *   viscous step   grid + neighbour rows at r^n for fluid particles;
+ *                  (I - dt nu L) u* = u^n + dt g, CG per component
+ *   move           r* = r^n + dt u*
+ *   collisions     (optional) rows at r*, approaching close pairs
+ *                  exchange momentum, rows rebuilt if any did
+ *   pressure       rows at r* for fluid and wall particles: n*, free
+ *                  surface, PPE, CG
+ *   correction     u^{n+1} = u* - dt/rho grad p, r^{n+1} = r* + dt u'
+ *
+ * A row is the list of neighbours of one particle within the largest
+ * radius, in increasing particle index (so every sum is the same for any
+ * number of threads), with the offset and the distance of each.
+ */
+#include "umppm/mps.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/time.h>
+#include <time.h>
+
+#define DIM 2 /* d of Eqs. 4, 6: the plane */
+
+/* square grid of the linked-list search, spacing h = the largest radius */
+typedef struct mps_grid {
+    double x0, y0, h;
+    long nx, ny;
+    size_t ncap, icap;
+    size_t *off;       /* [nx*ny + 1] */
+    size_t *cur;       /* [nx*ny] fill cursors */
+    size_t *idx;       /* [n] particle indices, bin by bin, increasing within a bin */
+    long *bin;         /* [n] bin of each particle */
+} mps_grid;
+
+/* neighbour rows (CSR over the particles that have one) */
+typedef struct mps_rows {
+    size_t *off;       /* [n + 1]: particle i's row; empty for particles without one */
+    size_t *j;         /* neighbour index */
+    double *dx, *dy;   /* x_j - x_i */
+    double *r;         /* |x_j - x_i| */
+    size_t ocap, cap;
+} mps_rows;
+
+struct mps {
+    mps_params P;
+    part_set *s;
+    size_t ns;                 /* solid particles */
+    unsigned char *kind;       /* [cap] MPS_FLUID / MPS_WALL / MPS_DUMMY */
+    double n0_n, n0_lap, lambda;
+    size_t cap;                /* capacity of the per-particle arrays */
+    double *p, *nd, *gx, *gy, *div, *tmp;
+    unsigned char *surf;
+    long *unk;                 /* PPE unknown of a particle, -1 if none */
+    size_t *unk_part;          /* particle of an unknown */
+    mps_grid g;
+    mps_rows rows;
+    /* matrix of the current solve (rows of unknowns) */
+    ump_idx *rp, *ci;
+    double *av, *b, *x;
+    size_t mcap_rows, mcap_nz;
+    lsolve_rows *kry;
+};
+
+static double cpu_seconds(void) { return (double)clock() / CLOCKS_PER_SEC; }
+
+static double wall_seconds(void)
+{
+    struct timeval tv;
+    gettimeofday(&tv, NULL);
+    return (double)tv.tv_sec + 1e-6 * (double)tv.tv_usec;
+}
+
+void mps_lattice_sums(double re, double *sum_w, double *sum_r2w)
+{
+    long k = (long)ceil(re) + 1;
+    double sw = 0, sr = 0;
+    for (long a = -k; a <= k; a++)
+        for (long c = -k; c <= k; c++) {
+            if (!a && !c)
+                continue;
+            double r = sqrt((double)(a * a + c * c)), w = mps_weight(r, re);
+            sw += w;
+            sr += r * r * w;
+        }
+    *sum_w = sw;
+    *sum_r2w = sr;
+}
+
+/* ---- storage ------------------------------------------------------------- */
+
+#define GROW_TO(ptr, n)                                              \
+    do {                                                             \
+        void *q_ = ump_realloc_array((ptr), (n), sizeof *(ptr));     \
+        if (!q_)                                                     \
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "MPS: out of memory for %zu particles", (size_t)(n)); \
+        (ptr) = q_;                                                  \
+    } while (0)
+
+/* Per-particle arrays for the part_set's current size (grown x1.5). */
+static ump_status reserve(mps *m, ump_err *err)
+{
+    size_t n = m->s->n;
+    if (n <= m->cap && m->p)
+        return UMP_OK;
+    size_t nc = n + n / 2 + 16, old = m->cap;
+    GROW_TO(m->kind, nc);
+    GROW_TO(m->p, nc);
+    GROW_TO(m->nd, nc);
+    GROW_TO(m->gx, nc);
+    GROW_TO(m->gy, nc);
+    GROW_TO(m->div, nc);
+    GROW_TO(m->tmp, nc);
+    GROW_TO(m->surf, nc);
+    GROW_TO(m->unk, nc);
+    GROW_TO(m->unk_part, nc);
+    GROW_TO(m->g.bin, nc);
+    GROW_TO(m->g.idx, nc);
+    GROW_TO(m->rows.off, nc + 1);
+    for (size_t i = old; i < nc; i++) {
+        m->kind[i] = MPS_FLUID;
+        m->p[i] = m->nd[i] = 0;
+        m->surf[i] = 0;
+    }
+    m->cap = nc;
+    return UMP_OK;
+}
+
+ump_status mps_create(const mps_params *prm, part_set *s, size_t nsolid, const unsigned char *kinds, mps **out,
+                      ump_err *err)
+{
+    *out = NULL;
+    UMP_CHECK(prm->l0 > 0 && isfinite(prm->l0), err, UMP_ERR_INPUT, "MPS: particle spacing %g", prm->l0);
+    UMP_CHECK(prm->re_n > 1 && prm->re_lap >= prm->re_n, err, UMP_ERR_INPUT,
+              "MPS: radii %g (number density) and %g (Laplacian) x l0: need 1 < first <= second", prm->re_n,
+              prm->re_lap);
+    UMP_CHECK(prm->beta > 0 && prm->beta < 1, err, UMP_ERR_INPUT, "MPS: beta %g not in (0, 1)", prm->beta);
+    UMP_CHECK(prm->rho > 0 && prm->nu >= 0, err, UMP_ERR_INPUT, "MPS: rho %g, nu %g", prm->rho, prm->nu);
+    UMP_CHECK(nsolid <= s->n, err, UMP_ERR_INPUT, "MPS: %zu solid particles of %zu", nsolid, s->n);
+    mps *m = ump_alloc_array(1, sizeof *m);
+    UMP_CHECK(m, err, UMP_ERR_NOMEM, "MPS: out of memory");
+    m->P = *prm;
+    m->s = s;
+    m->ns = nsolid;
+    ump_status rc;
+    if ((rc = reserve(m, err)) != UMP_OK || (rc = lsolve_rows_create(&m->kry, err)) != UMP_OK) {
+        mps_free(&m);
+        return rc;
+    }
+    for (size_t i = 0; i < nsolid; i++)
+        m->kind[i] = kinds[i];
+    double sw, sr;
+    mps_lattice_sums(prm->re_n, &sw, &sr);
+    m->n0_n = sw; /* Eq. 5 on the initial lattice, in units where l0 = 1 */
+
+    mps_lattice_sums(prm->re_lap, &sw, &sr);
+    m->n0_lap = sw;
+    /* Eq. 7 on the lattice: lambda = sum r^2 w / sum w, in m^2 */
+    m->lambda = prm->lambda > 0 ? prm->lambda : sr / sw * prm->l0 * prm->l0;
+    *out = m;
+    return UMP_OK;
+}
+
+void mps_free(mps **pm)
+{
+    if (!pm || !*pm)
+        return;
+    mps *m = *pm;
+    free(m->kind);
+    free(m->p);
+    free(m->nd);
+    free(m->gx);
+    free(m->gy);
+    free(m->div);
+    free(m->tmp);
+    free(m->surf);
+    free(m->unk);
+    free(m->unk_part);
+    free(m->g.off);
+    free(m->g.cur);
+    free(m->g.idx);
+    free(m->g.bin);
+    free(m->rows.off);
+    free(m->rows.j);
+    free(m->rows.dx);
+    free(m->rows.dy);
+    free(m->rows.r);
+    free(m->rp);
+    free(m->ci);
+    free(m->av);
+    free(m->b);
+    free(m->x);
+    lsolve_rows_free(&m->kry);
+    free(m);
+    *pm = NULL;
+}
+
+size_t mps_nsolid(const mps *m) { return m->ns; }
+const double *mps_pressure(const mps *m) { return m->p; }
+const double *mps_density(const mps *m) { return m->nd; }
+const unsigned char *mps_surface(const mps *m) { return m->surf; }
+
+void mps_constants(const mps *m, double *n0_n, double *n0_lap, double *lambda)
+{
+    *n0_n = m->n0_n;
+    *n0_lap = m->n0_lap;
+    *lambda = m->lambda;
+}
+
+void mps_compact(mps *m, const unsigned char *keep, size_t n_before)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < n_before; i++) {
+        if (!keep[i])
+            continue;
+        m->kind[k] = m->kind[i];
+        m->p[k] = m->p[i];
+        m->nd[k] = m->nd[i];
+        m->surf[k] = m->surf[i];
+        k++;
+    }
+}
+
+/* ---- linked-list search ---------------------------------------------------- */
+
+/* Bin every particle on a grid of spacing h over the bounding box of the
+ * solid particles (the container) and the fluid ones: counting sort, O(N).
+ * Particles are clamped into the border bins, which keeps the search exact
+ * (a bin may then hold distant particles, which the distance test drops). */
+static ump_status grid_build(mps *m, double h, ump_err *err)
+{
+    const part_set *s = m->s;
+    size_t n = s->n;
+    mps_grid *g = &m->g;
+    double xmin = HUGE_VAL, ymin = HUGE_VAL, xmax = -HUGE_VAL, ymax = -HUGE_VAL;
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(s->x[i]) || !isfinite(s->y[i]))
+            return UMP_FAIL(err, UMP_ERR_INPUT, "MPS: particle %zu (id %lld) has a non-finite position", i,
+                            (long long)s->id[i]);
+        xmin = fmin(xmin, s->x[i]);
+        xmax = fmax(xmax, s->x[i]);
+        ymin = fmin(ymin, s->y[i]);
+        ymax = fmax(ymax, s->y[i]);
+    }
+    if (n == 0)
+        xmin = ymin = xmax = ymax = 0;
+    g->h = h;
+    g->x0 = xmin;
+    g->y0 = ymin;
+    g->nx = (long)floor((xmax - xmin) / h) + 1;
+    g->ny = (long)floor((ymax - ymin) / h) + 1;
+    /* a particle flung far away must not make the grid huge: beyond
+     * 4 bins per particle the box is cut, and the border bins take the rest */
+    while ((double)g->nx * (double)g->ny > 4.0 * (double)n + 1024) {
+        if (g->nx >= g->ny)
+            g->nx = g->nx / 2 + 1;
+        else
+            g->ny = g->ny / 2 + 1;
+    }
+    size_t nb = (size_t)g->nx * (size_t)g->ny;
+    if (nb + 1 > g->ncap) {
+        size_t nc = nb + 1 + nb / 2;
+        GROW_TO(g->off, nc);
+        GROW_TO(g->cur, nc);
+        g->ncap = nc;
+    }
+    memset(g->off, 0, sizeof *g->off * (nb + 1));
+    for (size_t i = 0; i < n; i++) {
+        long bx = (long)floor((s->x[i] - g->x0) / h), by = (long)floor((s->y[i] - g->y0) / h);
+        bx = bx < 0 ? 0 : bx >= g->nx ? g->nx - 1 : bx;
+        by = by < 0 ? 0 : by >= g->ny ? g->ny - 1 : by;
+        g->bin[i] = by * g->nx + bx;
+        g->off[g->bin[i] + 1]++;
+    }
+    for (size_t b = 0; b < nb; b++)
+        g->off[b + 1] += g->off[b];
+    /* stable: indices increase within a bin */
+    memcpy(g->cur, g->off, sizeof *g->cur * nb);
+    for (size_t i = 0; i < n; i++)
+        g->idx[g->cur[g->bin[i]]++] = i;
+    return UMP_OK;
+}
+
+/* Neighbours of particle i within radius re (m), any kind but i itself, in
+ * increasing index, into the caller's arrays (max entries); returns the
+ * count (> max: not all stored). */
+static size_t gather(const mps *m, size_t i, double re, size_t *jj, double *ddx, double *ddy, double *rr,
+                     size_t max)
+{
+    const part_set *s = m->s;
+    const mps_grid *g = &m->g;
+    long b = g->bin[i], bx = b % g->nx, by = b / g->nx;
+    double xi = s->x[i], yi = s->y[i], re2 = re * re;
+    size_t k = 0;
+    for (long y = by - 1; y <= by + 1; y++) {
+        if (y < 0 || y >= g->ny)
+            continue;
+        for (long x = bx - 1; x <= bx + 1; x++) {
+            if (x < 0 || x >= g->nx)
+                continue;
+            size_t c = (size_t)(y * g->nx + x);
+            for (size_t q = g->off[c]; q < g->off[c + 1]; q++) {
+                size_t j = g->idx[q];
+                if (j == i)
+                    continue;
+                double dx = s->x[j] - xi, dy = s->y[j] - yi, d2 = dx * dx + dy * dy;
+                if (d2 >= re2)
+                    continue;
+                if (k < max) {
+                    /* insertion by index: rows come out sorted */
+                    size_t t = k;
+                    while (t > 0 && jj[t - 1] > j) {
+                        jj[t] = jj[t - 1];
+                        ddx[t] = ddx[t - 1];
+                        ddy[t] = ddy[t - 1];
+                        rr[t] = rr[t - 1];
+                        t--;
+                    }
+                    jj[t] = j;
+                    ddx[t] = dx;
+                    ddy[t] = dy;
+                    rr[t] = sqrt(d2);
+                }
+                k++;
+            }
+        }
+    }
+    return k;
+}
+
+/* Rows within radius re (m) for the particles with need[i] (NULL: fluid
+ * particles only; else kinds with need[kind] set). Two passes: count, then
+ * fill, each parallel over particles. */
+static ump_status rows_build(mps *m, double re, const int need[3], ump_err *err)
+{
+    const part_set *s = m->s;
+    size_t n = s->n;
+    mps_rows *R = &m->rows;
+    size_t *off = R->off;
+    enum { MAXN = 512 };
+    int overflow = 0;
+#pragma omp parallel
+    {
+        size_t jj[MAXN];
+        double a[MAXN], b[MAXN], c[MAXN];
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            size_t cnt = 0;
+            if (need[m->kind[i]]) {
+                cnt = gather(m, i, re, jj, a, b, c, MAXN);
+                if (cnt > MAXN) {
+#pragma omp atomic write
+                    overflow = 1;
+                }
+            }
+            off[i + 1] = cnt;
+        }
+    }
+    UMP_CHECK(!overflow, err, UMP_ERR_INPUT,
+              "MPS: a particle has more than %d neighbours within %g m: particles have collapsed onto each "
+              "other (the run has diverged)", MAXN, re);
+    off[0] = 0;
+    for (size_t i = 0; i < n; i++)
+        off[i + 1] += off[i];
+    size_t nz = off[n];
+    if (nz > R->cap) {
+        size_t nc = nz + nz / 2 + 64;
+        GROW_TO(R->j, nc);
+        GROW_TO(R->dx, nc);
+        GROW_TO(R->dy, nc);
+        GROW_TO(R->r, nc);
+        R->cap = nc;
+    }
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++)
+        if (off[i + 1] > off[i])
+            (void)gather(m, i, re, R->j + off[i], R->dx + off[i], R->dy + off[i], R->r + off[i],
+                         off[i + 1] - off[i]);
+    return UMP_OK;
+}
+
+static ump_status neighbours(mps *m, const int need[3], ump_err *err)
+{
+    double re = m->P.re_lap * m->P.l0;
+    UMP_CALL(grid_build(m, re, err));
+    return rows_build(m, re, need, err);
+}
+
+/* ---- matrices ---------------------------------------------------------------- */
+
+static ump_status matrix_reserve(mps *m, size_t nrows, size_t nz, ump_err *err)
+{
+    if (nrows + 1 > m->mcap_rows) {
+        size_t nc = nrows + 1 + nrows / 2 + 16;
+        GROW_TO(m->rp, nc);
+        GROW_TO(m->b, nc);
+        GROW_TO(m->x, nc);
+        m->mcap_rows = nc;
+    }
+    if (nz > m->mcap_nz) {
+        size_t nc = nz + nz / 2 + 64;
+        GROW_TO(m->ci, nc);
+        GROW_TO(m->av, nc);
+        m->mcap_nz = nc;
+    }
+    return UMP_OK;
+}
+
+/* Row i of a Laplacian-type matrix  diag = d0 + c sum_{j in sum} w_ij,
+ * off(j) = -c w_ij for j with unk[j] >= 0: columns in increasing unknown
+ * order (unknowns are numbered in particle order, rows sorted by particle:
+ * the same order), the diagonal in its place. Returns the entries written. */
+static size_t laplace_row(const mps *m, size_t i, double d0, double c, double re, const unsigned char *in_sum,
+                          ump_idx *col, double *val)
+{
+    const mps_rows *R = &m->rows;
+    size_t k = 0;
+    double diag = d0;
+    long me = m->unk[i];
+    int placed = 0;
+    for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
+        size_t j = R->j[q];
+        double w = mps_weight(R->r[q], re);
+        if (w == 0 || !in_sum[m->kind[j]])
+            continue;
+        diag += c * w;
+        if (m->unk[j] < 0)
+            continue; /* known value: zero (wall velocity, free-surface pressure) */
+        if (!placed && m->unk[j] > me) {
+            col[k] = (ump_idx)me;
+            val[k++] = 0; /* the diagonal, filled below */
+            placed = 1;
+        }
+        col[k] = (ump_idx)m->unk[j];
+        val[k++] = -c * w;
+    }
+    if (!placed) {
+        col[k] = (ump_idx)me;
+        val[k++] = 0;
+    }
+    for (size_t q = 0; q < k; q++)
+        if (col[q] == (ump_idx)me)
+            val[q] = diag;
+    return k;
+}
+
+/* Assemble the rows of the unknowns (unk_part[0..nu-1]) into rp/ci/av. */
+static ump_status assemble(mps *m, size_t nu, double d0, double c, double re, const unsigned char in_sum[3],
+                           ump_err *err)
+{
+    const mps_rows *R = &m->rows;
+    size_t nz = 0;
+    for (size_t k = 0; k < nu; k++) {
+        size_t i = m->unk_part[k];
+        nz += R->off[i + 1] - R->off[i] + 1;
+    }
+    UMP_CHECK(nz < (size_t)UMP_IDX_MAX && nu < (size_t)UMP_IDX_MAX, err, UMP_ERR_INPUT,
+              "MPS: %zu matrix entries exceed the index type", nz);
+    UMP_CALL(matrix_reserve(m, nu, nz, err));
+    /* row starts: upper bounds first (row length + 1), then compacted */
+    m->rp[0] = 0;
+    for (size_t k = 0; k < nu; k++) {
+        size_t i = m->unk_part[k];
+        m->rp[k + 1] = m->rp[k] + (ump_idx)(R->off[i + 1] - R->off[i] + 1);
+    }
+#pragma omp parallel for schedule(static)
+    for (size_t k = 0; k < nu; k++) {
+        size_t i = m->unk_part[k];
+        size_t len = laplace_row(m, i, d0, c, re, in_sum, m->ci + m->rp[k], m->av + m->rp[k]);
+        m->tmp[k] = (double)len;
+    }
+    /* compact the rows in place (serial, O(nz)) */
+    ump_idx w = 0;
+    for (size_t k = 0; k < nu; k++) {
+        ump_idx start = m->rp[k], len = (ump_idx)m->tmp[k];
+        if (start != w) {
+            memmove(m->ci + w, m->ci + start, sizeof *m->ci * (size_t)len);
+            memmove(m->av + w, m->av + start, sizeof *m->av * (size_t)len);
+        }
+        m->rp[k] = w;
+        w += len;
+    }
+    m->rp[nu] = w;
+    return UMP_OK;
+}
+
+/* ---- the stages -------------------------------------------------------------- */
+
+/* Implicit viscosity and gravity, Eqs. 11-14:
+ *   u*_i - dt nu 2d/(lambda n0) sum_j (u*_j - u*_i) w_ij = u^n_i + dt g
+ * over fluid neighbours (unknown) and solid ones (u = 0: no-slip). The
+ * matrix is symmetric positive definite: CG per component (Jacobi). */
+static ump_status viscous(mps *m, double dt, mps_stats *st, ump_err *err)
+{
+    part_set *s = m->s;
+    size_t n = s->n, ns = m->ns, nf = n - ns;
+    const mps_params *P = &m->P;
+    if (P->nu == 0 || nf == 0) {
+        for (size_t i = ns; i < n; i++) {
+            s->u[i] += dt * P->g[0];
+            s->v[i] += dt * P->g[1];
+        }
+        return UMP_OK;
+    }
+    static const int need[3] = {1, 0, 0};
+    UMP_CALL(neighbours(m, need, err));
+    for (size_t i = 0; i < n; i++)
+        m->unk[i] = i < ns ? -1 : (long)(i - ns);
+    for (size_t k = 0; k < nf; k++)
+        m->unk_part[k] = ns + k;
+    double c = dt * P->nu * 2.0 * DIM / (m->lambda * m->n0_lap); /* Eq. 6 with weights in lattice units */
+    static const unsigned char in_sum[3] = {1, 1, 1};
+    UMP_CALL(assemble(m, nf, 1.0, c, P->re_lap * P->l0, in_sum, err));
+    lsolve_csr A = {(ump_idx)nf, m->rp, m->ci, m->av};
+    UMP_CALL(lsolve_rows_setup(m->kry, &A, LSOLVE_PC_JACOBI, err));
+    for (int d = 0; d < 2; d++) {
+        double *vel = d ? s->v : s->u;
+        for (size_t k = 0; k < nf; k++) {
+            m->b[k] = vel[ns + k] + dt * P->g[d]; /* Eq. 14 right-hand side */
+            m->x[k] = m->b[k];
+        }
+        UMP_CALL(lsolve_rows_cg(m->kry, &A, m->b, m->x, P->u_tol, P->maxit, &st->visc[d], err));
+        if (st->visc[d].converged != 1)
+            return UMP_FAIL(err, UMP_ERR_SINGULAR, "MPS viscous step: CG for %s did not converge (%d iterations, "
+                            "residual %g)", d ? "Uy" : "Ux", st->visc[d].iterations, st->visc[d].res);
+        for (size_t k = 0; k < nf; k++)
+            vel[ns + k] = m->x[k];
+    }
+    return UMP_OK;
+}
+
+/* Collision model: fluid pairs closer than alpha l0 that approach exchange
+ * the approaching part of their relative velocity with restitution e (equal
+ * masses); against a solid particle the fluid particle alone reflects. Each
+ * particle's change is computed from the velocities before the model, so
+ * the result does not depend on the order (Jacobi-like). Returns pairs. */
+static size_t collide(mps *m, double dt)
+{
+    part_set *s = m->s;
+    size_t n = s->n, ns = m->ns, hits = 0;
+    const double dc = m->P.collision * m->P.l0, e = m->P.restitution;
+    const mps_rows *R = &m->rows;
+#pragma omp parallel for schedule(static) reduction(+ : hits)
+    for (size_t i = ns; i < n; i++) {
+        double du = 0, dv = 0;
+        for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
+            double r = R->r[q];
+            if (r >= dc || r <= 0)
+                continue;
+            size_t j = R->j[q];
+            double ex = R->dx[q] / r, ey = R->dy[q] / r;
+            double uj = j < ns ? 0 : s->u[j], vj = j < ns ? 0 : s->v[j];
+            double vn = (s->u[i] - uj) * ex + (s->v[i] - vj) * ey; /* > 0: approaching */
+            if (vn <= 0)
+                continue;
+            double f = j < ns ? (1 + e) * vn : 0.5 * (1 + e) * vn;
+            du -= f * ex;
+            dv -= f * ey;
+            hits++;
+        }
+        m->gx[i] = du;
+        m->gy[i] = dv;
+    }
+    for (size_t i = ns; i < n; i++) {
+        s->u[i] += m->gx[i];
+        s->v[i] += m->gy[i];
+        s->x[i] += dt * m->gx[i];
+        s->y[i] += dt * m->gy[i];
+    }
+    return hits;
+}
+
+/* Number density (Eq. 5) at the current positions for particles with rows,
+ * free surface flags, and the divergence of u (for the mixed source). */
+static void density(mps *m)
+{
+    const part_set *s = m->s;
+    size_t n = s->n;
+    const mps_rows *R = &m->rows;
+    const double beta = m->P.beta, n0 = m->n0_n;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        double nd = 0, dv = 0;
+        double ui = i < m->ns ? 0 : s->u[i], vi = i < m->ns ? 0 : s->v[i];
+        for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
+            double w = mps_weight(R->r[q] / m->P.l0, m->P.re_n);
+            if (w == 0)
+                continue;
+            nd += w;
+            size_t j = R->j[q];
+            double uj = j < m->ns ? 0 : s->u[j], vj = j < m->ns ? 0 : s->v[j];
+            double r2 = R->r[q] * R->r[q];
+            dv += ((uj - ui) * R->dx[q] + (vj - vi) * R->dy[q]) / r2 * w; /* divergence model, after Eq. 4 */
+        }
+        m->nd[i] = nd / n0;
+        m->div[i] = DIM / n0 * dv;
+        /* free surface: n* < beta n0 (dummy particles never take part) */
+        m->surf[i] = m->kind[i] == MPS_DUMMY ? 0 : m->nd[i] < beta;
+    }
+}
+
+/* Pressure Poisson equation, Eqs. 16-18, for fluid and wall particles that
+ * are not on the free surface:
+ *   2d/(lambda n0) sum_j (p_i - p_j) w_ij = (rho/dt^2)(n*_i - n0)/n0
+ * (the sign flipped to make the matrix positive definite), p_j = 0 on the
+ * free surface, dummy particles outside the sums. Mixed source:
+ *   ... = -(rho/dt) div u*_i + gamma (rho/dt^2)(n*_i - n0)/n0. */
+static ump_status pressure(mps *m, double dt, mps_stats *st, ump_err *err)
+{
+    const part_set *s = m->s;
+    size_t n = s->n;
+    const mps_params *P = &m->P;
+    size_t nu = 0, nsurf = 0;
+    for (size_t i = 0; i < n; i++) {
+        int take = m->kind[i] != MPS_DUMMY && !m->surf[i] && m->rows.off[i + 1] > m->rows.off[i];
+        if (m->kind[i] == MPS_FLUID && m->surf[i])
+            nsurf++;
+        if (take) {
+            m->unk_part[nu] = i;
+            m->unk[i] = (long)nu++;
+        } else
+            m->unk[i] = -1;
+    }
+    st->nsurface = nsurf;
+    st->nunknowns = nu;
+    double a = 2.0 * DIM / (m->lambda * m->n0_lap);
+    static const unsigned char in_sum[3] = {1, 1, 0}; /* fluid and wall, not dummy */
+    UMP_CALL(assemble(m, nu, 0.0, a, P->re_lap * P->l0, in_sum, err));
+    double k_dens = P->rho / (dt * dt), k_div = P->rho / dt;
+    for (size_t k = 0; k < nu; k++) {
+        size_t i = m->unk_part[k];
+        double dev = m->nd[i] - 1.0; /* (n*_i - n0)/n0 */
+        m->b[k] = P->source == MPS_SOURCE_DENSITY ? k_dens * dev /* Eq. 18 */
+                                                  : -k_div * m->div[i] + P->gamma * k_dens * dev;
+        m->x[k] = m->p[i]; /* warm start: the last pressure */
+    }
+    lsolve_csr A = {(ump_idx)nu, m->rp, m->ci, m->av};
+    UMP_CALL(lsolve_rows_setup(m->kry, &A, LSOLVE_PC_JACOBI, err));
+    UMP_CALL(lsolve_rows_cg(m->kry, &A, m->b, m->x, P->p_tol, P->maxit, &st->pres, err));
+    if (st->pres.converged != 1)
+        return UMP_FAIL(err, UMP_ERR_SINGULAR, "MPS pressure equation: CG did not converge (%d iterations, "
+                        "residual %g): a region of fluid without free-surface particles makes it singular",
+                        st->pres.iterations, st->pres.res);
+    for (size_t i = 0; i < n; i++)
+        m->p[i] = 0;
+    for (size_t k = 0; k < nu; k++)
+        m->p[m->unk_part[k]] = m->x[k];
+    return UMP_OK;
+}
+
+/* Pressure gradient (Eq. 4 with the local minimum p^_i) and the correction
+ * of Eq. 20 for fluid particles. */
+static void correct(mps *m, double dt, mps_stats *st)
+{
+    part_set *s = m->s;
+    size_t n = s->n, ns = m->ns;
+    const mps_rows *R = &m->rows;
+    const double re = m->P.re_n, l0 = m->P.l0, k = DIM / m->n0_n, rho = m->P.rho;
+#pragma omp parallel for schedule(static)
+    for (size_t i = ns; i < n; i++) {
+        double pmin = m->p[i];
+        for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
+            size_t j = R->j[q];
+            if (m->kind[j] != MPS_DUMMY && R->r[q] < re * l0)
+                pmin = fmin(pmin, m->p[j]);
+        }
+        double gx = 0, gy = 0;
+        for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
+            size_t j = R->j[q];
+            double w = mps_weight(R->r[q] / l0, re);
+            if (w == 0 || m->kind[j] == MPS_DUMMY)
+                continue;
+            double f = (m->p[j] - pmin) / (R->r[q] * R->r[q]) * w;
+            gx += f * R->dx[q];
+            gy += f * R->dy[q];
+        }
+        m->gx[i] = k * gx; /* Eq. 4 */
+        m->gy[i] = k * gy;
+    }
+    double umax = 0, pmin = HUGE_VAL, pmax = -HUGE_VAL, nmin = HUGE_VAL, nmax = -HUGE_VAL;
+    for (size_t i = ns; i < n; i++) {
+        double du = -dt / rho * m->gx[i], dv = -dt / rho * m->gy[i]; /* Eq. 20 */
+        s->u[i] += du;
+        s->v[i] += dv;
+        s->x[i] += dt * du;
+        s->y[i] += dt * dv;
+        umax = fmax(umax, hypot(s->u[i], s->v[i]));
+        pmin = fmin(pmin, m->p[i]);
+        pmax = fmax(pmax, m->p[i]);
+        nmin = fmin(nmin, m->nd[i]);
+        nmax = fmax(nmax, m->nd[i]);
+    }
+    st->u_max = umax;
+    st->p_min = n > ns ? pmin : 0;
+    st->p_max = n > ns ? pmax : 0;
+    st->n_min = n > ns ? nmin : 0;
+    st->n_max = n > ns ? nmax : 0;
+}
+
+ump_status mps_step(mps *m, double dt, mps_stats *st, ump_err *err)
+{
+    memset(st, 0, sizeof *st);
+    UMP_CHECK(dt > 0 && isfinite(dt), err, UMP_ERR_INPUT, "MPS: time step %g", dt);
+    UMP_CALL(reserve(m, err));
+    part_set *s = m->s;
+    size_t n = s->n, ns = m->ns;
+    st->nfluid = n - ns;
+    double c0 = cpu_seconds(), w0 = wall_seconds(), c1, w1;
+    /* 1. viscosity and gravity, implicit (Eqs. 11-14) */
+    UMP_CALL(viscous(m, dt, st, err));
+    c1 = cpu_seconds(), w1 = wall_seconds();
+    st->cpu[1] += c1 - c0, st->wall[1] += w1 - w0;
+    /* 2. temporary positions (Eq. 10) */
+    for (size_t i = ns; i < n; i++) {
+        s->x[i] += dt * s->u[i];
+        s->y[i] += dt * s->v[i];
+    }
+    /* 3. rows at r* for fluid and wall particles; collisions */
+    static const int need[3] = {1, 1, 0};
+    UMP_CALL(neighbours(m, need, err));
+    if (m->P.collision > 0 && (st->collisions = collide(m, dt)) > 0)
+        UMP_CALL(neighbours(m, need, err));
+    density(m);
+    c0 = cpu_seconds(), w0 = wall_seconds();
+    st->cpu[0] += c0 - c1, st->wall[0] += w0 - w1;
+    /* 4. pressure (Eqs. 16-18) */
+    UMP_CALL(pressure(m, dt, st, err));
+    c1 = cpu_seconds(), w1 = wall_seconds();
+    st->cpu[2] += c1 - c0, st->wall[2] += w1 - w0;
+    /* 5. correction (Eq. 20) */
+    correct(m, dt, st);
+    st->cpu[3] += cpu_seconds() - c1, st->wall[3] += wall_seconds() - w1;
+    return UMP_OK;
+}
