@@ -75,9 +75,10 @@ unit: $(UNIT_BIN) $(APP)
 	@set -e; for t in $(UNIT_BIN); do echo "== $$t"; $$t; done
 
 # Tests against OpenFOAM's own tools (blockMesh, gmshToFoam, postProcess...).
-integration: $(APP) $(TOOLS) $(BUILD)/geomcheck $(BUILD)/write_cavity_fields $(BUILD)/write_cloud $(BUILD)/killshim.so \
+integration: $(APP) $(MLAPP) $(TOOLS) $(BUILD)/geomcheck $(BUILD)/write_cavity_fields $(BUILD)/write_cloud $(BUILD)/killshim.so \
              $(BUILD)/editshim.so
-	@UMPPMFOAM=$(abspath $(APP)) GEOMCHECK=$(abspath $(BUILD)/geomcheck) KILLSHIM=$(abspath $(BUILD)/killshim.so) \
+	@UMPPMFOAM=$(abspath $(APP)) MESHLESSFOAM=$(abspath $(MLAPP)) GEOMCHECK=$(abspath $(BUILD)/geomcheck) \
+	    KILLSHIM=$(abspath $(BUILD)/killshim.so) \
 	    EDITSHIM=$(abspath $(BUILD)/editshim.so) \
 	    WRITE_CAVITY_FIELDS=$(abspath $(BUILD)/write_cavity_fields) \
 	    WRITE_CLOUD=$(abspath $(BUILD)/write_cloud) TOOLDIR=$(abspath $(BUILD)/tools) tests/integration/run_all.sh

@@ -715,6 +715,14 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         run_lost += lost;
         printf("MPS: %zu fluid particles, %zu on the free surface, %zu pressure unknowns, %zu collisions; "
                "n*/n0 min %.4g max %.4g\n", st.nfluid, st.nsurface, st.nunknowns, st.collisions, st.n_min, st.n_max);
+        {
+            size_t im;
+            speeds(&a, &umax, &umean, &im);
+            if (im < a.s->n)
+                printf("Velocity: |U| mean %g max %g m/s (particle %lld at (%g %g)%s)\n", umean, umax,
+                       (long long)a.s->id[im], a.s->x[im], a.s->y[im],
+                       mps_surface(a.solver)[im] ? ", free surface" : "");
+        }
         if (a.prm.nu > 0)
             for (int d = 0; d < 2; d++)
                 printf("DICPCG:  Solving for %s, Initial residual = %g, Final residual = %g, No Iterations %d\n",

@@ -493,6 +493,7 @@ static ump_status assemble(mps *m, size_t nu, double d0, double c, double re, co
 
 /* ---- the stages -------------------------------------------------------------- */
 
+
 /* Implicit viscosity and gravity, Eqs. 11-14:
  *   u*_i - dt nu 2d/(lambda n0) sum_j (u*_j - u*_i) w_ij = u^n_i + dt g
  * over fluid neighbours (unknown) and solid ones (u = 0: no-slip). The
@@ -655,21 +656,21 @@ static ump_status pressure(mps *m, double dt, mps_stats *st, ump_err *err)
     return UMP_OK;
 }
 
-/* Pressure gradient (Eq. 4 with the local minimum p^_i) and the correction
- * of Eq. 20 for fluid particles. */
-static void correct(mps *m, double dt, mps_stats *st)
+/* Pressure gradient of p at the fluid particles (Eq. 4, with the local
+ * minimum p^_i in place of p_i) into gx, gy. */
+static void gradient(const mps *m, const double *p, double *gxo, double *gyo)
 {
-    part_set *s = m->s;
+    const part_set *s = m->s;
     size_t n = s->n, ns = m->ns;
     const mps_rows *R = &m->rows;
-    const double re = m->P.re_n, l0 = m->P.l0, k = DIM / m->n0_n, rho = m->P.rho;
+    const double re = m->P.re_n, l0 = m->P.l0, k = DIM / m->n0_n;
 #pragma omp parallel for schedule(static)
     for (size_t i = ns; i < n; i++) {
-        double pmin = m->p[i];
+        double pmin = p[i];
         for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
             size_t j = R->j[q];
             if (m->kind[j] != MPS_DUMMY && R->r[q] < re * l0)
-                pmin = fmin(pmin, m->p[j]);
+                pmin = fmin(pmin, p[j]);
         }
         double gx = 0, gy = 0;
         for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
@@ -677,13 +678,22 @@ static void correct(mps *m, double dt, mps_stats *st)
             double w = mps_weight(R->r[q] / l0, re);
             if (w == 0 || m->kind[j] == MPS_DUMMY)
                 continue;
-            double f = (m->p[j] - pmin) / (R->r[q] * R->r[q]) * w;
+            double f = (p[j] - pmin) / (R->r[q] * R->r[q]) * w;
             gx += f * R->dx[q];
             gy += f * R->dy[q];
         }
-        m->gx[i] = k * gx; /* Eq. 4 */
-        m->gy[i] = k * gy;
+        gxo[i] = k * gx; /* Eq. 4 */
+        gyo[i] = k * gy;
     }
+}
+
+/* The correction of Eq. 20 for fluid particles. */
+static void correct(mps *m, double dt, mps_stats *st)
+{
+    part_set *s = m->s;
+    size_t n = s->n, ns = m->ns;
+    const double rho = m->P.rho;
+    gradient(m, m->p, m->gx, m->gy);
     double umax = 0, pmin = HUGE_VAL, pmax = -HUGE_VAL, nmin = HUGE_VAL, nmax = -HUGE_VAL;
     for (size_t i = ns; i < n; i++) {
         double du = -dt / rho * m->gx[i], dv = -dt / rho * m->gy[i]; /* Eq. 20 */

@@ -1,0 +1,170 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# test_meshless.sh -- meshlessFoam (MPS) on interFoam cases, checked with
+# OpenFOAM's own tools and against interFoam on the same case:
+#   1. dam break (Martin & Moyce's column, tutorials/damBreakMartinMoyce on
+#      5 mm cells, t = 0.12 s, T = 2.2): the surge front (foamFreeSurface on
+#      alpha.water, the same definition for both solvers) within 10 % of
+#      interFoam's at t = 0.1 s, and moving (> 1.5 a); no particle lost
+#      through walls; the run on 1 and 2 threads writes the same cloud
+#      positions, bit for bit;
+#   2. the written time directory is genuine OpenFOAM: foamToVTK converts
+#      the cloud (as many points as particles) and the fields;
+#   3. water at rest (tutorials/hydrostaticTank, 1 cm cells, t = 0.3 s):
+#      p of the cells next to the left wall, 0.1 to 0.3 m deep, within 2 %
+#      of rho g (h - y) (rho 1000, g 9.81, h the water depth 0.3 m; nearer
+#      the surface p lags by about rho g l0/2: p = 0 holds at the centres of
+#      the surface particles, half a spacing below h);
+#   4. refusals by name before the first step: a moving wall, an inflow
+#      patch, a symmetryPlane patch, a turbulence model, no constant/g,
+#      gravity out of the plane, an unknown meshless key, three phases; and
+#      the log says the gas phase and sigma are not simulated.
+# Needs MESHLESSFOAM and TOOLDIR.
+set -eu -o pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+[ -n "${MESHLESSFOAM:-}" ] && [ -x "$MESHLESSFOAM" ] || { echo "FAIL: MESHLESSFOAM not set" >&2; exit 2; }
+[ -n "${TOOLDIR:-}" ] && [ -x "$TOOLDIR/foamFreeSurface" ] || { echo "FAIL: TOOLDIR not set" >&2; exit 2; }
+. "$here/lib.sh"
+of_env
+work=$(mktemp -d "${TMPDIR:-/tmp}/umppm-meshless.XXXXXX")
+fail=0
+tut=$here/../../tutorials
+
+# ---- 1. dam break, against interFoam; threads -------------------------------
+# case_copy TUTORIAL DEST: the case files of a tutorial only (not what a
+# run of its Allrun may have left there), 0 from 0.orig
+case_copy() {
+    mkdir -p "$2" && cp -r "$tut/$1/0.orig" "$tut/$1/constant" "$tut/$1/system" "$2/"
+    rm -rf "$2/constant/polyMesh" && cp -r "$2/0.orig" "$2/0"
+}
+c=$work/damBreak
+case_copy damBreakMartinMoyce "$c"
+# (sed: foamDictionary -set would expand $nx in the blocks entry first)
+sed -i 's/^nx .*/nx 60;/; s/^ny .*/ny 30;/' "$c/system/blockMeshDict"
+foam_set "$c" system/controlDict endTime 0.12
+foam_set "$c" system/controlDict writeInterval 0.02
+run_in "$c" blockMesh blockMesh
+run_in "$c" setFields setFields
+cp -r "$c" "$work/interFoam"
+cp -r "$c" "$work/damBreak1"
+foam_set "$work/interFoam" system/controlDict application interFoam
+if run_in "$c" meshlessFoam env OMP_NUM_THREADS=2 "$MESHLESSFOAM" &&
+    run_in "$work/damBreak1" meshlessFoam env OMP_NUM_THREADS=1 "$MESHLESSFOAM" &&
+    run_in "$work/interFoam" interFoam interFoam; then
+    a=0.05715
+    fm=$("$TOOLDIR/foamFreeSurface" "$c" -time 0.1 | awk '!/^#/ { print $2 }')
+    fi=$("$TOOLDIR/foamFreeSurface" "$work/interFoam" -time 0.1 | awk '!/^#/ { print $2 }')
+    echo "  front at t = 0.1 s: meshlessFoam $fm m, interFoam $fi m"
+    check_range "front moved (x / a at t = 0.1 s)" "$(awk -v f="$fm" -v a="$a" 'BEGIN { printf "%.4f", f / a }')" 1.5 10
+    check_range "front, meshlessFoam / interFoam" "$(awk -v m="$fm" -v i="$fi" 'BEGIN { printf "%.4f", m / i }')" 0.9 1.1
+    summary=$(grep '^Particles over' "$c/log.meshlessFoam" || true)
+    echo "  $summary"
+    check_range "particles left the closed tank" "$(echo "$summary" | awk '{ print $5 }')" 0 0
+    if cmp -s "$c/0.12/lagrangian/meshlessCloud/positions" "$work/damBreak1/0.12/lagrangian/meshlessCloud/positions" &&
+        cmp -s "$c/0.12/lagrangian/meshlessCloud/p" "$work/damBreak1/0.12/lagrangian/meshlessCloud/p"; then
+        echo "  ok   1 and 2 threads: the same positions and pressures, bit for bit"
+    else
+        echo "  FAIL 1 and 2 threads write different clouds"
+        fail=1
+    fi
+    # ---- 2. foamToVTK reads what was written ---------------------------------
+    if run_in "$c" foamToVTK foamToVTK -latestTime; then
+        np=$(sed -n '/^(/,/^)/p' "$c/0.12/lagrangian/meshlessCloud/origId" | sed '1d;$d' | wc -l)
+        vtk=$(find "$c/VTK" -path '*meshlessCloud*' -name '*.vtp' | head -n 1)
+        if [ -n "$vtk" ]; then
+            npv=$(grep -m 1 -o "NumberOfPoints=[\"'][0-9]*" "$vtk" | tr -dc '0-9' || true)
+            check_range "foamToVTK cloud points" "$npv" "$np" "$np"
+        else
+            echo "  FAIL foamToVTK wrote no cloud file"
+            fail=1
+        fi
+        grep -q 'alpha.water' "$c/log.foamToVTK" && echo "  ok   foamToVTK converted alpha.water" ||
+            { echo "  FAIL foamToVTK did not convert alpha.water"; fail=1; }
+    else
+        fail=1
+    fi
+else
+    fail=1
+fi
+
+# ---- 3. hydrostatic pressure at the wall -------------------------------------
+h=$work/tank
+case_copy hydrostaticTank "$h"
+foam_set "$h" system/controlDict endTime 0.3
+foam_set "$h" system/controlDict writeInterval 0.3
+run_in "$h" blockMesh blockMesh
+run_in "$h" setFields setFields
+if run_in "$h" meshlessFoam "$MESHLESSFOAM" && run_in "$h" writeCellCentres postProcess -func writeCellCentres -time 0.3; then
+    err=$(paste <(field_values "$h/0.3/C") <(field_values "$h/0.3/p") | awk '
+        $1 < 0.01 && $2 < 0.2 { want = 1000 * 9.81 * (0.3 - $2); e = ($4 - want) / want;
+            if (e < 0) e = -e; if (e > m) m = e; n++ }
+        END { if (n < 5) print "nan"; else printf "%.4f", m }')
+    check_range "wall pressure, largest relative error (0.1 to 0.3 m deep)" "$err" 0 0.02
+else
+    fail=1
+fi
+
+# ---- 4. refusals ---------------------------------------------------------------
+# expect_refusal NAME PATTERN: meshlessFoam in $r fails before the first
+# step with PATTERN in its error
+r=$work/refuse
+expect_refusal() {
+    if (cd "$r" && "$MESHLESSFOAM") > "$r/log.$1" 2>&1; then
+        echo "  FAIL $1: meshlessFoam ran"
+        fail=1
+    elif grep -q "^Time = " "$r/log.$1"; then
+        echo "  FAIL $1: refused only after the first step"
+        fail=1
+    elif grep -q -- "$2" "$r/log.$1"; then
+        echo "  ok   $1 refused: $(grep -o 'FATAL ERROR: .*' "$r/log.$1" | cut -c 14-130)"
+    else
+        echo "  FAIL $1: no '$2' in the error:"
+        tail -n 2 "$r/log.$1" | sed 's/^/    /'
+        fail=1
+    fi
+}
+fresh() {
+    rm -rf "$r" && cp -r "$c" "$r" && rm -rf "$r"/0.[0-9]* "$r/VTK" "$r"/log.*
+}
+if [ -d "$c/constant/polyMesh" ]; then
+    fresh
+    sed -i '/leftWall/,/}/s/type *noSlip;/type fixedValue; value uniform (0 0.1 0);/' "$r/0/U"
+    expect_refusal movingWall "moving walls"
+    fresh
+    sed -i '/atmosphere/,/}/{s/type .*/type fixedValue;/;s/value .*/value uniform (0 -1 0);/}' "$r/0/U"
+    expect_refusal inflow "inflow boundaries"
+    fresh
+    sed -i '/rightWall/,/}/s/type *wall;/type symmetryPlane;/' "$r/constant/polyMesh/boundary"
+    expect_refusal symmetryPlane "symmetry"
+    fresh
+    sed -i 's/^simulationType .*/simulationType RAS;/' "$r/constant/turbulenceProperties"
+    expect_refusal turbulence "laminar solver"
+    fresh
+    rm "$r/constant/g"
+    expect_refusal noGravity "needs gravity"
+    fresh
+    sed -i 's/^value .*/value (0 -9.81 1);/' "$r/constant/g"
+    expect_refusal gravityOutOfPlane "normal to the plane"
+    fresh
+    sed -i '/^meshless/,/^}/c\meshless\n{\n    reLaplcian 3;\n}' "$r/system/fvSolution"
+    expect_refusal unknownKey "unknown key 'reLaplcian'"
+    fresh
+    sed -i 's/^phases .*/phases (water oil air);/' "$r/constant/transportProperties"
+    expect_refusal threePhases "two phases"
+    # the gas and sigma are named in the log of a normal run
+    if grep -q 'air (nu .*) is not simulated' "$c/log.meshlessFoam" &&
+        grep -q 'sigma 0.07 is read and not simulated' "$c/log.meshlessFoam"; then
+        echo "  ok   the log names the gas phase and sigma as not simulated"
+    else
+        echo "  FAIL the log does not say that the gas and sigma are not simulated"
+        fail=1
+    fi
+fi
+
+if [ "$fail" -eq 0 ]; then
+    rm -rf "$work"
+    echo "test_meshless.sh: PASS"
+else
+    echo "test_meshless.sh: FAIL (work dir kept: $work)"
+    exit 1
+fi
