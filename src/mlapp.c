@@ -257,7 +257,7 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
     P->maxit = (int)(a->ml.maxit > 1000000000L ? 1000000000L : a->ml.maxit);
     /* wall particles within r_e(n) of the wall; dummies so that every wall
      * particle has a full neighbourhood and every fluid particle a full
-     * Laplacian stencil (docs/METHOD.md section 12.2) */
+     * Laplacian stencil (docs/METHOD.md section 9) */
     double wall_depth = P->re_n * l0, thick = fmax(2 * P->re_n, P->re_lap + 0.5) * l0;
     UMP_CALL(part_create(1024, &a->s, err));
     double *uc = ump_alloc_array((size_t)m->ncells + 1, sizeof *uc), *vc = ump_alloc_array((size_t)m->ncells + 1,

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * mps.c -- the fully implicit MPS step (see mps.h and docs/METHOD.md
- * section 12).
+ * section 9).
  *
  * Layout: the part_set holds solid particles [0, ns) then fluid particles
  * [ns, n). Per-particle arrays of this module (pressure, number density,

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * mlseed.h -- the initial particles of a meshless (free-surface) case
- * (module prefix mlseed_); docs/METHOD.md section 12.2.
+ * (module prefix mlseed_); docs/METHOD.md section 9.
  *
  * One square lattice of spacing l0 covers the container: points
  * (x0 + (i + 1/2) l0, y0 + (j + 1/2) l0) with (x0, y0) the lower-left corner

@@ -1,14 +1,13 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * mps.h -- free-surface flow on particles alone by the fully implicit
  * moving particle semi-implicit (MPS) method (module prefix mps_); the
- * numerics of meshlessFoam with `method MPS` (docs/METHOD.md section 12).
+ * numerics of meshlessFoam with `method MPS` (docs/METHOD.md section 9).
  *
- * Source: the fully implicit MPS method (viscosity and pressure implicit,
- * free surface by number density), after Koshizuka & Oka, "Moving-particle
- * semi-implicit method for fragmentation of incompressible fluid", Nucl.
- * Sci. Eng. 123 (1996) 421-434, with the implicit viscosity for high
- * viscosity (1-10 m^2/s) at large time steps. Equation numbers in comments
- * are those of that description:
+ * Source: the "full implicit MPS method" (viscosity and pressure implicit,
+ * free surface by number density, for high viscosity, 1-10 m^2/s, at large
+ * time steps), after Koshizuka & Oka, "Moving-particle semi-implicit method
+ * for fragmentation of incompressible fluid", Nucl. Sci. Eng. 123 (1996)
+ * 421-434. Equation numbers in comments are those of that description:
  *   kernel w(r) = r_e/r - 1 (r < r_e), 0 beyond           Eq. 3
  *   gradient <grad f>_i = d/n0 sum (f_j - f_i) r_ij/|r_ij|^2 w   Eq. 4
  *   number density n_i = sum_{j != i} w(|r_ij|)            Eq. 5
@@ -34,7 +33,7 @@
  * increasing particle index, so the result does not depend on the number
  * of threads (a test checks 1 against 2 threads bit for bit).
  *
- * Where the description is silent (docs/METHOD.md section 12 gives the
+ * Where the description is silent (docs/METHOD.md section 9 gives the
  * reasons): the pressure gradient subtracts the local minimum pressure
  * p^_i = min(p_i, p_j) instead of p_i (Koshizuka, Nobe & Oka 1998), so the
  * gradient term is always repulsive; negative pressures are kept in the
