@@ -692,13 +692,30 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
 ump_status lsolve_rows_cg(lsolve_rows *k, const lsolve_csr *A, const double *b, double *x, double tol, int maxit,
                           lsolve_stats *st, ump_err *err)
 {
+    return lsolve_rows_cg_pc(k, A, b, x, tol, maxit, NULL, NULL, st, err);
+}
+
+/* z = M^-1 r: the caller's preconditioner, or the one of lsolve_rows_setup */
+static void cg_pc(lsolve_rows *k, const lsolve_csr *A, lsolve_pc_fn fn, void *ctx, double *r, double *z)
+{
+    if (fn) {
+        fn(ctx, r, z);
+        return;
+    }
+    double *R[1] = {r}, *Z[1] = {z};
+    apply_pc(k, A, 1, R, Z);
+}
+
+ump_status lsolve_rows_cg_pc(lsolve_rows *k, const lsolve_csr *A, const double *b, double *x, double tol, int maxit,
+                             lsolve_pc_fn fn, void *ctx, lsolve_stats *st, ump_err *err)
+{
     const ump_idx n = A->n;
     memset(st, 0, sizeof *st);
     UMP_CHECK(tol > 0 && maxit >= 0, err, UMP_ERR_INPUT, "CG: tolerance %g, %d iterations", tol, maxit);
     UMP_CHECK(k->pc_n == n, err, UMP_ERR_INPUT, "CG: no preconditioner was built for a matrix of order %ld",
               (long)n);
     /* CG needs a symmetric preconditioner: the block ILU(0) is not one */
-    UMP_CHECK(k->pc != LSOLVE_PC_ILU0, err, UMP_ERR_INPUT, "CG: the ILU0 preconditioner is not symmetric; "
+    UMP_CHECK(fn || k->pc != LSOLVE_PC_ILU0, err, UMP_ERR_INPUT, "CG: the ILU0 preconditioner is not symmetric; "
               "use Jacobi or none");
     UMP_CALL(reserve_rows(k, n, 1, err));
     double *r = k->vec[0][V_R], *p = k->vec[0][V_P], *q = k->vec[0][V_V], *z = k->vec[0][V_PH];
@@ -722,7 +739,7 @@ ump_status lsolve_rows_cg(lsolve_rows *k, const lsolve_csr *A, const double *b, 
         st->converged = 1;
         return UMP_OK;
     }
-    apply_pc(k, A, 1, R, Z);
+    cg_pc(k, A, fn, ctx, r, z);
     memcpy(p, z, sizeof(double) * (size_t)n);
     dots(k, n, 1, R, Z, &rz);
     int it = 0;
@@ -761,7 +778,7 @@ ump_status lsolve_rows_cg(lsolve_rows *k, const lsolve_csr *A, const double *b, 
             st->converged = 1;
             break;
         }
-        apply_pc(k, A, 1, R, Z);
+        cg_pc(k, A, fn, ctx, r, z);
         double rz_new;
         dots(k, n, 1, R, Z, &rz_new);
         double be = rz_new / rz;

@@ -175,5 +175,12 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
  * is not positive (A not definite) or not finite. */
 ump_status lsolve_rows_cg(lsolve_rows *k, const lsolve_csr *A, const double *b, double *x, double tol, int maxit,
                           lsolve_stats *st, ump_err *err);
+/* A symmetric positive definite preconditioner given by the caller:
+ * z = M^-1 r (r, z of the order of A; r must not be changed). */
+typedef void (*lsolve_pc_fn)(void *ctx, const double *r, double *z);
+/* lsolve_rows_cg with the preconditioner fn(ctx, ...) (NULL: the one of
+ * lsolve_rows_setup, which must still have been called for A's order). */
+ump_status lsolve_rows_cg_pc(lsolve_rows *k, const lsolve_csr *A, const double *b, double *x, double tol, int maxit,
+                             lsolve_pc_fn fn, void *ctx, lsolve_stats *st, ump_err *err);
 
 #endif
