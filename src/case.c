@@ -905,7 +905,7 @@ static const case_option meshless_options[] = {
     {"cloudName", CASE_OPT_WORD, "meshlessCloud", 0, NULL, NULL, UM_NORANGE,
      "name of the particle cloud under <time>/lagrangian/", ML_FIELD(cloud_name)},
     {"maxVelocity", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_GE(0),
-     "stop when a particle |U| exceeds it; 0: 10 sqrt(2 |g| H), H the domain height", ML_FIELD(max_velocity)},
+     "stop when a particle |U| exceeds it; 0: max(10 sqrt(2 |g| H), 10 |U0|max, 1 m/s)", ML_FIELD(max_velocity)},
 };
 
 static const case_opt_table meshless_table = {"meshless", meshless_options,

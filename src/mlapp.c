@@ -643,13 +643,15 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
             xmax = fmax(xmax, a.m->vx[k]);
         }
         double g = hypot(a.g2[0], a.g2[1]), H = fmax(ymax - ymin, xmax - xmin);
-        a.u_bound = a.ml.max_velocity > 0 ? a.ml.max_velocity : 10 * sqrt(2 * g * H) + 1e-300;
         double umax, umean;
         speeds(&a, &umax, &umean, NULL);
-        if (a.ml.max_velocity == 0 && umax > 0.1 * a.u_bound)
-            a.u_bound = 10 * umax;
+        /* 10 x the fastest the liquid can move: falling through the
+         * container, or its initial speed; at least 1 m/s (no gravity) */
+        a.u_bound = a.ml.max_velocity > 0 ? a.ml.max_velocity : fmax(10 * fmax(sqrt(2 * g * H), umax), 1.0);
         printf("Divergence guard: |U| <= %g m/s (%s)\n", a.u_bound,
-               a.ml.max_velocity > 0 ? "meshless maxVelocity" : "10 x the free-fall speed over the container");
+               a.ml.max_velocity > 0 ? "meshless maxVelocity"
+                                     : "10 x max(the free-fall speed over the container, the initial |U|), "
+                                       "at least 1 m/s");
     }
     rt_time t;
     rt_init(&t, &a.ctl, t0, tname);
@@ -741,7 +743,7 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         if (!(umax <= a.u_bound)) {
             rc = UMP_FAIL(err, UMP_ERR_INPUT,
                           "the run has diverged at time %s: particle %lld at (%g %g) has |U| = %g m/s > %g "
-                          "(meshless maxVelocity; 0: 10 x the free-fall speed); nothing of this step was "
+                          "(meshless maxVelocity, or its default); nothing of this step was "
                           "written. Reduce deltaT or meshless maxCo", t.name, (long long)a.s->id[imax],
                           a.s->x[imax], a.s->y[imax], umax, a.u_bound);
             goto done;
