@@ -7,7 +7,8 @@
 #      alpha.water, the same definition for both solvers) within 10 % of
 #      interFoam's at t = 0.1 s, and moving (> 1.5 a); no particle lost
 #      through walls; the run on 1 and 2 threads writes the same cloud
-#      positions, bit for bit;
+#      positions, bit for bit; a restart from the written cloud (startFrom
+#      latestTime) goes on with the same particles;
 #   2. the written time directory is genuine OpenFOAM: foamToVTK converts
 #      the cloud (as many points as particles) and the fields;
 #   3. water at rest (tutorials/hydrostaticTank, 1 cm cells, t = 0.3 s):
@@ -65,6 +66,23 @@ if run_in "$c" meshlessFoam env OMP_NUM_THREADS=2 "$MESHLESSFOAM" &&
         echo "  ok   1 and 2 threads: the same positions and pressures, bit for bit"
     else
         echo "  FAIL 1 and 2 threads write different clouds"
+        fail=1
+    fi
+    # a restart from the written cloud: the same particles go on
+    rs=$work/restart
+    cp -r "$work/damBreak1" "$rs"
+    foam_set "$rs" system/controlDict startFrom latestTime
+    foam_set "$rs" system/controlDict endTime 0.14
+    if run_in "$rs" meshlessFoam env OMP_NUM_THREADS=1 "$MESHLESSFOAM"; then
+        n0=$(sed -n '/^(/,/^)/p' "$rs/0.12/lagrangian/meshlessCloud/origId" | sed '1d;$d' | sort -n | md5sum)
+        n1=$(sed -n '/^(/,/^)/p' "$rs/0.14/lagrangian/meshlessCloud/origId" | sed '1d;$d' | sort -n | md5sum)
+        if grep -q 'from the cloud 0.12/lagrangian/meshlessCloud (restart)' "$rs/log.meshlessFoam" && [ "$n0" = "$n1" ]; then
+            echo "  ok   restart at 0.12 from the cloud: the same particle ids at 0.14"
+        else
+            echo "  FAIL restart: cloud not read, or the particle ids changed"
+            fail=1
+        fi
+    else
         fail=1
     fi
     # ---- 2. foamToVTK reads what was written ---------------------------------
