@@ -316,17 +316,25 @@ static ump_status grid_build(mps *m, double h, ump_err *err)
     return UMP_OK;
 }
 
-/* Neighbours of particle i within radius re (m), any kind but i itself, in
- * increasing index, into the caller's arrays (max entries); returns the
- * count (> max: not all stored). */
+/* Neighbours of particle i within radius re (m), any kind but i itself:
+ * their number; with jj != NULL also, in increasing index, their indices,
+ * offsets and distances (at most max; the count tells whether all fit).
+ * Each of the 3 x 3 bins yields its particles in increasing index; the
+ * candidates are gathered, then ordered by an insertion sort of their
+ * positions (one small array moved instead of four). */
 static size_t gather(const mps *m, size_t i, double re, size_t *jj, double *ddx, double *ddy, double *rr,
                      size_t max)
 {
+    enum { TMAX = 512 };
     const part_set *s = m->s;
     const mps_grid *g = &m->g;
     long b = g->bin[i], bx = b % g->nx, by = b / g->nx;
     double xi = s->x[i], yi = s->y[i], re2 = re * re;
-    size_t k = 0;
+    size_t k = 0, tj[TMAX];
+    double tx[TMAX], ty[TMAX];
+    unsigned short ord[TMAX];
+    if (max > TMAX)
+        max = TMAX;
     for (long y = by - 1; y <= by + 1; y++) {
         if (y < 0 || y >= g->ny)
             continue;
@@ -338,27 +346,36 @@ static size_t gather(const mps *m, size_t i, double re, size_t *jj, double *ddx,
                 size_t j = g->idx[q];
                 if (j == i)
                     continue;
-                double dx = s->x[j] - xi, dy = s->y[j] - yi, d2 = dx * dx + dy * dy;
-                if (d2 >= re2)
+                double dx = s->x[j] - xi, dy = s->y[j] - yi;
+                if (dx * dx + dy * dy >= re2)
                     continue;
-                if (k < max) {
-                    /* insertion by index: rows come out sorted */
-                    size_t t = k;
-                    while (t > 0 && jj[t - 1] > j) {
-                        jj[t] = jj[t - 1];
-                        ddx[t] = ddx[t - 1];
-                        ddy[t] = ddy[t - 1];
-                        rr[t] = rr[t - 1];
-                        t--;
-                    }
-                    jj[t] = j;
-                    ddx[t] = dx;
-                    ddy[t] = dy;
-                    rr[t] = sqrt(d2);
+                if (jj && k < max) {
+                    tj[k] = j;
+                    tx[k] = dx;
+                    ty[k] = dy;
                 }
                 k++;
             }
         }
+    }
+    if (!jj)
+        return k;
+    size_t kk = k < max ? k : max;
+    for (size_t t = 0; t < kk; t++) {
+        unsigned short v = (unsigned short)t;
+        size_t u = t;
+        while (u > 0 && tj[ord[u - 1]] > tj[v]) {
+            ord[u] = ord[u - 1];
+            u--;
+        }
+        ord[u] = v;
+    }
+    for (size_t t = 0; t < kk; t++) {
+        unsigned short o = ord[t];
+        jj[t] = tj[o];
+        ddx[t] = tx[o];
+        ddy[t] = ty[o];
+        rr[t] = sqrt(tx[o] * tx[o] + ty[o] * ty[o]);
     }
     return k;
 }
@@ -376,13 +393,11 @@ static ump_status rows_build(mps *m, double re, const int need[3], ump_err *err)
     int overflow = 0;
 #pragma omp parallel
     {
-        size_t jj[MAXN];
-        double a[MAXN], b[MAXN], c[MAXN];
 #pragma omp for schedule(static)
         for (size_t i = 0; i < n; i++) {
             size_t cnt = 0;
             if (need[m->kind[i]]) {
-                cnt = gather(m, i, re, jj, a, b, c, MAXN);
+                cnt = gather(m, i, re, NULL, NULL, NULL, NULL, MAXN); /* count only */
                 if (cnt > MAXN) {
 #pragma omp atomic write
                     overflow = 1;
