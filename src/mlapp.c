@@ -352,7 +352,7 @@ static ump_status fill_fields(mlapp *a, ump_err *err)
         a->cnt = ump_alloc_array(nc + 1, sizeof *a->cnt);
         a->su = ump_alloc_array(nc + 1, sizeof *a->su);
         a->sv = ump_alloc_array(nc + 1, sizeof *a->sv);
-        a->sp = ump_alloc_array(nc + 1, sizeof *a->sp);
+        a->sp = ump_alloc_array(3 * nc + 1, sizeof *a->sp);
         UMP_CHECK(a->cnt && a->su && a->sv && a->sp, err, UMP_ERR_NOMEM, "out of memory");
     }
     memset(a->cnt, 0, nc * sizeof *a->cnt);
@@ -372,8 +372,34 @@ static ump_status fill_fields(mlapp *a, ump_err *err)
     double l02 = a->prm.l0 * a->prm.l0, rl = a->ph.rho[0], rg = a->ph.rho[1];
     double gmag = sqrt(a->bu.g[0] * a->bu.g[0] + a->bu.g[1] * a->bu.g[1] + a->bu.g[2] * a->bu.g[2]);
     double ghref = -gmag * (a->bu.has_h_ref ? a->bu.h_ref : 0.0);
+    /* alpha: the particles' area l0^2 per cell area. A cell holding more
+     * than fit (the particles bunch: 5 in a cell of 4) passes the excess
+     * to its neighbours N1 that have room, in proportion to it, so the
+     * liquid area is kept instead of being cut at 1 (measured: the cut
+     * lost 5-9 % of the liquid in the dam breaks) */
+    double *al = a->sp + nc, *room = al + nc; /* scratch after sp (3 nc) */
     for (size_t c = 0; c < nc; c++) {
-        double k = a->cnt[c], al = fmin(1.0, k * l02 / m->area[c]);
+        al[c] = a->cnt[c] * l02 / m->area[c];
+        room[c] = 0;
+    }
+    for (size_t c = 0; c < nc; c++) {
+        if (al[c] <= 1)
+            continue;
+        double excess = (al[c] - 1) * m->area[c], space = 0;
+        for (ump_idx q = m->n1_off[c]; q < m->n1_off[c + 1]; q++) {
+            ump_idx d = m->n1[q];
+            space += fmax(0.0, 1 - al[d]) * m->area[d];
+        }
+        if (space <= 0)
+            continue;
+        double f = fmin(1.0, excess / space);
+        for (ump_idx q = m->n1_off[c]; q < m->n1_off[c + 1]; q++) {
+            ump_idx d = m->n1[q];
+            room[d] += f * fmax(0.0, 1 - al[d]); /* the alpha d receives */
+        }
+    }
+    for (size_t c = 0; c < nc; c++) {
+        double k = a->cnt[c], al_c = fmin(1.0, fmin(1.0, al[c]) + room[c]);
         double *U = a->U->internal + 3 * c;
         U[0] = U[1] = U[2] = 0;
         double p = 0;
@@ -385,9 +411,9 @@ static ump_status fill_fields(mlapp *a, ump_err *err)
         double C[3];
         mesh_to3d(m, m->cx[c], m->cy[c], C);
         double gh = a->bu.g[0] * C[0] + a->bu.g[1] * C[1] + a->bu.g[2] * C[2] - ghref;
-        a->alpha->internal[c] = al;
+        a->alpha->internal[c] = al_c;
         a->p->internal[c] = p;
-        a->prgh->internal[c] = p - (al * rl + (1 - al) * rg) * gh;
+        a->prgh->internal[c] = p - (al_c * rl + (1 - al_c) * rg) * gh;
     }
     /* boundary values: prescribed ones stay, the others take the cell's */
     fld_field *F[4] = {a->alpha, a->U, a->prgh, a->p};
