@@ -888,7 +888,7 @@ static const case_option meshless_options[] = {
      "Laplacian parameter lambda [m^2]; 0: Eq. 7 on the initial lattice", ML_FIELD(lambda)},
     {"sourceTerm", CASE_OPT_CHOICE, "mixed", 1, source_words, source_values, UM_NORANGE,
      "pressure source: density (Eq. 18) or mixed (div u* + gamma density)", ML_FIELD(source_mixed)},
-    {"gamma", CASE_OPT_SCALAR, "0.01", 0.01, NULL, NULL, ML_CLOSED(0, 1),
+    {"gamma", CASE_OPT_SCALAR, "0.1", 0.1, NULL, NULL, ML_CLOSED(0, 1),
      "weight of the density deviation in the mixed source", ML_FIELD(gamma)},
     {"collisionDistance", CASE_OPT_SCALAR, "0.5", 0.5, NULL, NULL, ML_CLOSED(0, 1),
      "collision model below this distance / l0; 0: off", ML_FIELD(collision)},

@@ -186,7 +186,7 @@ ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *e
 /* ---- meshlessFoam: the meshless sub-dictionary of system/fvSolution ------
  * All keys optional, one table (case_meshless_options) as for UMPPM:
  *   meshless { method MPS; spacing 0; reNumberDensity 3.1; reLaplacian 3.1;
- *              beta 0.98; lambda 0; sourceTerm mixed; gamma 0.01;
+ *              beta 0.98; lambda 0; sourceTerm mixed; gamma 0.1;
  *              collisionDistance 0.5; restitution 0.2; maxCo 0.2;
  *              pressureTolerance 1e-8; velocityTolerance 1e-10;
  *              maxIter 5000; cloudName meshlessCloud; maxVelocity 0; } */
