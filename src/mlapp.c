@@ -705,7 +705,7 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
     static const char *const stage_name[5] = {"neighbours, number density", "viscosity (implicit, CG)",
                                               "pressure (PPE, CG)", "correction", "locate on the mesh"};
     while (rt_running(&t)) {
-        speeds(&a, &umax, &umean, NULL);
+        /* umax, umean: of the start fields, then of the step before */
         u_g = wave_speed(&a);
         printf("Courant Number mean: %g max: %g\n", umean * t.delta_t / l0, umax * t.delta_t / l0);
         if (a.ctl.adjust_time_step) {
@@ -743,14 +743,14 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         run_lost += lost;
         printf("MPS: %zu fluid particles, %zu on the free surface, %zu pressure unknowns, %zu collisions; "
                "n*/n0 min %.4g max %.4g\n", st.nfluid, st.nsurface, st.nunknowns, st.collisions, st.n_min, st.n_max);
-        {
-            size_t im;
-            speeds(&a, &umax, &umean, &im);
-            if (im < a.s->n)
-                printf("Velocity: |U| mean %g max %g m/s (particle %lld at (%g %g)%s)\n", umean, umax,
-                       (long long)a.s->id[im], a.s->x[im], a.s->y[im],
-                       mps_surface(a.solver)[im] ? ", free surface" : "");
-        }
+        /* the speeds after the step: logged, checked by the guard, and the
+         * Courant number of the next step */
+        size_t imax;
+        speeds(&a, &umax, &umean, &imax);
+        if (imax < a.s->n)
+            printf("Velocity: |U| mean %g max %g m/s (particle %lld at (%g %g)%s)\n", umean, umax,
+                   (long long)a.s->id[imax], a.s->x[imax], a.s->y[imax],
+                   mps_surface(a.solver)[imax] ? ", free surface" : "");
         if (a.prm.nu > 0)
             for (int d = 0; d < 2; d++)
                 printf("DICPCG:  Solving for %s, Initial residual = %g, Final residual = %g, No Iterations %d\n",
@@ -764,8 +764,6 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         if (lost)
             printf("--> meshlessFoam Warning: %zu particles could not be located on the mesh and were removed\n",
                    lost);
-        size_t imax;
-        speeds(&a, &umax, &umean, &imax);
         if (!(umax <= a.u_bound)) {
             rc = UMP_FAIL(err, UMP_ERR_INPUT,
                           "the run has diverged at time %s: particle %lld at (%g %g) has |U| = %g m/s > %g "

@@ -865,20 +865,18 @@ static void correct(mps *m, double dt, mps_stats *st)
     size_t n = s->n, ns = m->ns;
     const double rho = m->P.rho;
     gradient(m, m->p, m->gx, m->gy);
-    double umax = 0, pmin = HUGE_VAL, pmax = -HUGE_VAL, nmin = HUGE_VAL, nmax = -HUGE_VAL;
+    double pmin = HUGE_VAL, pmax = -HUGE_VAL, nmin = HUGE_VAL, nmax = -HUGE_VAL;
     for (size_t i = ns; i < n; i++) {
         double du = -dt / rho * m->gx[i], dv = -dt / rho * m->gy[i]; /* Eq. 20 */
         s->u[i] += du;
         s->v[i] += dv;
         s->x[i] += dt * du;
         s->y[i] += dt * dv;
-        umax = fmax(umax, hypot(s->u[i], s->v[i]));
         pmin = fmin(pmin, m->p[i]);
         pmax = fmax(pmax, m->p[i]);
         nmin = fmin(nmin, m->nd[i]);
         nmax = fmax(nmax, m->nd[i]);
     }
-    st->u_max = umax;
     st->p_min = n > ns ? pmin : 0;
     st->p_max = n > ns ? pmax : 0;
     st->n_min = n > ns ? nmin : 0;

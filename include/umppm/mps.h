@@ -86,7 +86,6 @@ typedef struct mps_stats {
     size_t nfluid, nsurface, nunknowns; /* particles, free-surface ones, PPE unknowns */
     size_t collisions;      /* pairs the collision model separated */
     double n_min, n_max;    /* number density of fluid particles / n0 */
-    double u_max;           /* largest fluid speed after the step [m/s] */
     double p_min, p_max;    /* pressure of the fluid particles [Pa] */
     double cpu[4], wall[4]; /* per stage: neighbours, viscosity, pressure, update */
 } mps_stats;
