@@ -339,3 +339,217 @@ mls_basis mls_gradient(const double *restrict dx, const double *restrict dy, con
     info->basis = nb == 6 ? MLS_QUADRATIC : MLS_LINEAR;
     return info->basis;
 }
+
+/* ---- The full derivatives of the fit: [LHC19] Eqs. 1-18 ------------------- */
+
+void mls_wfun_eval(mls_wfun wf, double q, double *w, double *w1, double *wq, double *w2)
+{
+    *w = *w1 = *wq = *w2 = 0;
+    if (!(q < 1))
+        return;
+    if (wf == MLS_WFUN_SPLINE) {
+        /* Eq. 5: w = 1 - 6q^2 + 8q^3 - 3q^4 = (1 - q)^3 (1 + 3q), in the
+         * factored form: positive for every q < 1 (the expanded sum
+         * cancels to rounding, even to <= 0, near q = 1, where w'' is
+         * not negligible); w' = -12 q (1 - q)^2, w'' = -12 (1 - q)(1 - 3q) */
+        double r = 1 - q;
+        *w = r * r * r * (1 + 3 * q);
+        *wq = -12 * r * r;
+        *w1 = q * *wq;
+        *w2 = -12 * r * (1 - 3 * q);
+        return;
+    }
+    /* Eq. 4 in q: w = exp(-s^-2), s = q^2 - 1 < 0; w' = 4 q w / s^3,
+     * w'' = w (4/s^3 + 16 q^2/s^6 - 24 q^2/s^4). Below s^2 = 1e-3, w <
+     * e^-1000 = 0 in double precision and its derivatives too. */
+    double s = q * q - 1, s2 = s * s;
+    if (s2 < 1e-3)
+        return;
+    double e = exp(-1 / s2), s3 = s2 * s;
+    *w = e;
+    *wq = 4 * e / s3;
+    *w1 = q * *wq;
+    *w2 = e * (4 / s3 + 16 * q * q / (s3 * s3) - 24 * q * q / (s2 * s2));
+}
+
+/* The weight of sample (X, Y) (normalised offset from the target) and its
+ * derivatives with respect to the evaluation point, at the target:
+ * d = |x - x_j|, dq/dX = -X/q, so w_X = -w' X/q and
+ * w_XY = w'' X Y/q^2 + (w'/q)(delta - X Y/q^2). wd[0..5]: w, w_X, w_Y,
+ * w_XX, w_XY, w_YY. */
+static inline void wderiv(mls_wfun wf, double X, double Y, double wd[6])
+{
+    double q = sqrt(X * X + Y * Y), w, w1, wq, w2;
+    mls_wfun_eval(wf, q, &w, &w1, &wq, &w2);
+    wd[0] = w;
+    wd[1] = -wq * X;
+    wd[2] = -wq * Y;
+    if (q > 0) {
+        double a = (w2 - wq) / (q * q); /* w''/q^2 - (w'/q)/q^2 */
+        wd[3] = a * X * X + wq;
+        wd[4] = a * X * Y;
+        wd[5] = a * Y * Y + wq;
+    } else { /* w'(0) = 0 for both weights: the limit is w''(0) delta */
+        wd[3] = wd[5] = w2;
+        wd[4] = 0;
+    }
+}
+
+/* Basis b = [1 X Y X^2 XY Y^2] (Eq. 2) of a normalised offset. */
+static inline void basis(double X, double Y, double b[6])
+{
+    b[0] = 1;
+    b[1] = X;
+    b[2] = Y;
+    b[3] = X * X;
+    b[4] = X * Y;
+    b[5] = Y * Y;
+}
+
+/* y = A x for the nb x nb symmetric matrix stored as its upper triangle. */
+static inline void symv(int nb, double a[6][6], const double *x, double *y)
+{
+    for (int i = 0; i < nb; i++) {
+        double t = 0;
+        for (int k = 0; k < nb; k++)
+            t += (k >= i ? a[i][k] : a[k][i]) * x[k];
+        y[i] = t;
+    }
+}
+
+static inline double dot(int nb, const double *a, const double *b)
+{
+    double t = 0;
+    for (int k = 0; k < nb; k++)
+        t += a[k] * b[k];
+    return t;
+}
+
+mls_basis mls_full(const double *dx, const double *dy, int n, double h, mls_wfun wf, double *const c[MLS_NOUT],
+                   mls_info *info)
+{
+    if (info) {
+        info->basis = MLS_NONE;
+        info->rcond = 0;
+    }
+    if (n <= 0)
+        return MLS_NONE;
+    const double ih = 1 / h;
+    /* S and its derivatives S_a (a = X, Y, XX, XY, YY): S_a = sum w_a b b^T
+     * (Eqs. 10, 13, 15), upper triangles of the quadratic basis */
+    double S[6][6][6] = {{{0}}};
+    int nw = 0;
+    double wsum = 0;
+    for (int j = 0; j < n; j++) {
+        double X = dx[j] * ih, Y = dy[j] * ih, wd[6], b[6];
+        wderiv(wf, X, Y, wd);
+        if (wd[0] <= 0)
+            continue;
+        nw++;
+        wsum += wd[0];
+        basis(X, Y, b);
+        for (int i = 0; i < 6; i++)
+            for (int k = i; k < 6; k++) {
+                double bb = b[i] * b[k];
+                for (int a = 0; a < 6; a++)
+                    S[a][i][k] += wd[a] * bb;
+            }
+    }
+    int nb = nw >= 6 ? 6 : nw >= 3 ? 3 : nw >= 1 ? 1 : 0;
+    spd_small f;
+    double rcond = 0;
+    while (nb > 1) {
+        double a[SPD_MAX][SPD_MAX];
+        for (int i = 0; i < nb; i++)
+            for (int k = i; k < nb; k++)
+                a[i][k] = S[0][i][k];
+        rcond = spd_factor_invert(&f, nb, a);
+        if (rcond >= MLS_RCOND_MIN)
+            break;
+        nb = nb == 6 ? 3 : 1;
+    }
+    if (info) {
+        info->basis = (mls_basis)nb;
+        info->rcond = nb == 1 ? 1 : rcond;
+    }
+    if (nb <= 1) {
+        /* Shepard (Eq. 27 of mls_weights): value only */
+        for (int j = 0; j < n; j++) {
+            double wd[6];
+            wderiv(wf, dx[j] * ih, dy[j] * ih, wd);
+            if (c[MLS_C0])
+                c[MLS_C0][j] = nw ? wd[0] / wsum : 1.0 / n;
+            for (int k = 1; k < MLS_NOUT; k++)
+                if (c[k])
+                    c[k][j] = 0;
+        }
+        return nw ? MLS_SHEPARD : MLS_NONE;
+    }
+    /* M = S^-1 (unscaled); m0 = M e0 (Eq. 12 at the target, b = e0);
+     * g_a = M (b_a - S_a m0) (Eq. 14 contracted with b);
+     * h_ab = M (b_ab - S_ab m0 - S_b g_a - S_a g_b) (Eq. 16 contracted) */
+    double M[6][6] = {{0}};
+    for (int i = 0; i < nb; i++)
+        for (int k = 0; k < nb; k++)
+            M[i][k] = f.s[i] * f.inv[i < k ? i : k][i < k ? k : i] * f.s[k];
+    double m0[6], g[2][6], hh[3][6], t[6], t2[6];
+    for (int i = 0; i < nb; i++)
+        m0[i] = M[i][0];
+    for (int a = 0; a < 2; a++) {
+        symv(nb, S[1 + a], m0, t);
+        for (int i = 0; i < nb; i++)
+            t[i] = (i == 1 + a ? 1.0 : 0.0) - t[i];
+        for (int i = 0; i < nb; i++)
+            g[a][i] = dot(nb, M[i], t);
+    }
+    /* second derivatives: pairs (a, b) = (X, X), (X, Y), (Y, Y); b_XX = 2 e3,
+     * b_XY = e4, b_YY = 2 e5 */
+    static const int pa[3] = {0, 0, 1}, pb[3] = {0, 1, 1};
+    for (int q = 0; q < 3; q++) {
+        for (int i = 0; i < 6; i++)
+            hh[q][i] = 0;
+        if (nb < 6)
+            continue; /* the linear basis has no curvature */
+        symv(nb, S[3 + q], m0, t);
+        for (int i = 0; i < nb; i++)
+            t[i] = (i == 3 + q ? (q == 1 ? 1.0 : 2.0) : 0.0) - t[i];
+        symv(nb, S[1 + pb[q]], g[pa[q]], t2);
+        for (int i = 0; i < nb; i++)
+            t[i] -= t2[i];
+        symv(nb, S[1 + pa[q]], g[pb[q]], t2);
+        for (int i = 0; i < nb; i++)
+            t[i] -= t2[i];
+        for (int i = 0; i < nb; i++)
+            hh[q][i] = dot(nb, M[i], t);
+    }
+    /* per sample (Eqs. 17-18): c0 = w m0.b; c_a = w g_a.b + w_a m0.b;
+     * c_ab = w h_ab.b + w_a g_b.b + w_b g_a.b + w_ab m0.b; then back to
+     * physical units (d/dx = d/dX / h) */
+    const double s1 = ih, s2 = ih * ih;
+    for (int j = 0; j < n; j++) {
+        double X = dx[j] * ih, Y = dy[j] * ih, wd[6], b[6];
+        wderiv(wf, X, Y, wd);
+        if (wd[0] <= 0) /* as in the moments: no weight, no part in the fit */
+            wd[0] = wd[1] = wd[2] = wd[3] = wd[4] = wd[5] = 0;
+        basis(X, Y, b);
+        double mb = dot(nb, m0, b), gb[2] = {dot(nb, g[0], b), dot(nb, g[1], b)};
+        if (c[MLS_C0])
+            c[MLS_C0][j] = wd[0] * mb;
+        if (c[MLS_CX])
+            c[MLS_CX][j] = s1 * (wd[0] * gb[0] + wd[1] * mb);
+        if (c[MLS_CY])
+            c[MLS_CY][j] = s1 * (wd[0] * gb[1] + wd[2] * mb);
+        for (int q = 0; q < 3; q++) {
+            double *cq = c[MLS_CXX + q];
+            if (!cq)
+                continue;
+            if (nb < 6) {
+                cq[j] = 0;
+                continue;
+            }
+            int a = pa[q], bq = pb[q];
+            cq[j] = s2 * (wd[0] * dot(nb, hh[q], b) + wd[1 + a] * gb[bq] + wd[1 + bq] * gb[a] + wd[3 + q] * mb);
+        }
+    }
+    return (mls_basis)nb;
+}

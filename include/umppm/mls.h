@@ -74,4 +74,41 @@ mls_basis mls_weights(const double *dx, const double *dy, int n, double mean_dx,
 mls_basis mls_gradient(const double *dx, const double *dy, const double *u, int n, double mean_dx,
                        double mean_dy, double *gx, double *gy, mls_info *info);
 
+/* ---- The full MLS derivatives of the finite particle method -----------------
+ * Lu, Hu, Chang, Li & Wei, "Grid-free modelling based on the finite particle
+ * method for incompressible viscous flow problems", Math. Probl. Eng. 2019
+ * [LHC19], Eqs. 1-18 (docs/METHOD.md section 11). The fit at a point x:
+ * Pi u(x) = b(x)^T a(x) (Eq. 1), quadratic basis b = [1 x y x^2 xy y^2]
+ * (Eq. 2) centred at the target, S a = r with S = V W V^T, r = V W u
+ * (Eqs. 7-12). The derivatives are those of the fit itself, with the weights'
+ * dependence on x: a' = S^-1 (r' - S' a) (Eq. 14), the second derivatives
+ * of Eq. 16 (written for mixed partials), assembled as Eqs. 17-18. Unlike
+ * mls_weights (the "diffuse" derivative b'^T a), these are exact for
+ * quadratics AND are the true derivatives of a smooth approximant.
+ * Weights of the normalised distance q = d / h (h the support radius h_0):
+ *   MLS_WFUN_EXP     w = exp(-1 / (q^2 - 1)^2), q < 1        Eq. 4
+ *   MLS_WFUN_SPLINE  w = 1 - 6q^2 + 8q^3 - 3q^4, q < 1       Eq. 5
+ * Eq. 4 is printed in the paper as exp(-(d^2 - h_0^2)^-2), which is not
+ * dimensionless (it underflows to 0 for any h_0 below a metre); it is used
+ * in the normalised distance, the form it has for h_0 = 1. */
+typedef enum { MLS_WFUN_EXP = 4, MLS_WFUN_SPLINE = 5 } mls_wfun;
+
+/* Outputs of mls_full, per sample: value, d/dx, d/dy, d2/dx2, d2/dxdy, d2/dy2. */
+enum { MLS_C0, MLS_CX, MLS_CY, MLS_CXX, MLS_CXY, MLS_CYY, MLS_NOUT };
+
+/* Weight w(q) of the normalised distance q and its first and second
+ * derivatives w'(q), w''(q); w'(q)/q in *wq (finite at q = 0). */
+void mls_wfun_eval(mls_wfun wf, double q, double *w, double *w1, double *wq, double *w2);
+
+/* Per-sample coefficients at the target for n samples at offsets
+ * (dx[j], dy[j]) (sample minus target; the target itself may be one of
+ * them, at offset 0), support radius h (samples at d >= h have weight 0):
+ *   d^k u / dx^a dy^b (target) ~ sum_j c[k][j] u_j, k = MLS_C0 .. MLS_CYY.
+ * Any c[k] may be NULL. Falls back to the linear basis (second derivatives
+ * 0) when fewer than 6 samples have weight or the equilibrated S has a
+ * reciprocal condition number below MLS_RCOND_MIN, and to Shepard (value
+ * only, derivatives 0) below 3. No allocation. */
+mls_basis mls_full(const double *dx, const double *dy, int n, double h, mls_wfun wf, double *const c[MLS_NOUT],
+                   mls_info *info);
+
 #endif
