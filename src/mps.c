@@ -20,6 +20,7 @@
  * number of threads), with the offset and the distance of each.
  */
 #include "umppm/mps.h"
+#include "umppm/pnbr.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -31,26 +32,6 @@
 #define MPS_SKIN 0.6 /* Verlet skin of the neighbour rows, in l0 */
 #define MPS_AGG 3.0  /* side of the PPE's coarse aggregates, in l0 */
 
-/* square grid of the linked-list search, spacing h = the largest radius */
-typedef struct mps_grid {
-    double x0, y0, h;
-    long nx, ny;
-    size_t ncap, icap;
-    size_t *off;       /* [nx*ny + 1] */
-    size_t *cur;       /* [nx*ny] fill cursors */
-    size_t *idx;       /* [n] particle indices, bin by bin, increasing within a bin */
-    long *bin;         /* [n] bin of each particle */
-} mps_grid;
-
-/* neighbour rows (CSR over the particles that have one) */
-typedef struct mps_rows {
-    size_t *off;       /* [n + 1]: particle i's row; empty for particles without one */
-    size_t *j;         /* neighbour index */
-    double *dx, *dy;   /* x_j - x_i */
-    double *r;         /* |x_j - x_i| */
-    size_t ocap, cap;
-} mps_rows;
-
 struct mps {
     mps_params P;
     part_set *s;
@@ -59,12 +40,10 @@ struct mps {
     double n0_n, n0_lap, lambda;
     size_t cap;                /* capacity of the per-particle arrays */
     double *p, *nd, *gx, *gy, *div, *tmp;
-    double *xb, *yb;           /* positions when the rows were built */
     unsigned char *surf;
     long *unk;                 /* PPE unknown of a particle, -1 if none */
     size_t *unk_part;          /* particle of an unknown */
-    mps_grid g;
-    mps_rows rows;
+    pnbr nb;                   /* neighbour rows (pnbr.h) */
     /* matrix of the current solve (rows of unknowns) */
     ump_idx *rp, *ci;
     double *av, *b, *x;
@@ -132,16 +111,11 @@ static ump_status reserve(mps *m, ump_err *err)
     GROW_TO(m->gy, nc);
     GROW_TO(m->div, nc);
     GROW_TO(m->tmp, nc);
-    GROW_TO(m->xb, nc);
-    GROW_TO(m->yb, nc);
     GROW_TO(m->agg, nc);
     GROW_TO(m->dinv, nc);
     GROW_TO(m->surf, nc);
     GROW_TO(m->unk, nc);
     GROW_TO(m->unk_part, nc);
-    GROW_TO(m->g.bin, nc);
-    GROW_TO(m->g.idx, nc);
-    GROW_TO(m->rows.off, nc + 1);
     for (size_t i = old; i < nc; i++) {
         m->kind[i] = MPS_FLUID;
         m->p[i] = m->nd[i] = 0;
@@ -198,8 +172,6 @@ void mps_free(mps **pm)
     free(m->gy);
     free(m->div);
     free(m->tmp);
-    free(m->xb);
-    free(m->yb);
     free(m->agg);
     free(m->dinv);
     free(m->binmap);
@@ -211,15 +183,7 @@ void mps_free(mps **pm)
     free(m->surf);
     free(m->unk);
     free(m->unk_part);
-    free(m->g.off);
-    free(m->g.cur);
-    free(m->g.idx);
-    free(m->g.bin);
-    free(m->rows.off);
-    free(m->rows.j);
-    free(m->rows.dx);
-    free(m->rows.dy);
-    free(m->rows.r);
+    pnbr_free(&m->nb);
     free(m->rp);
     free(m->ci);
     free(m->av);
@@ -256,222 +220,20 @@ void mps_compact(mps *m, const unsigned char *keep, size_t n_before)
     }
 }
 
-/* ---- linked-list search ---------------------------------------------------- */
-
-/* Bin every particle on a grid of spacing h over the bounding box of the
- * solid particles (the container) and the fluid ones: counting sort, O(N).
- * Particles are clamped into the border bins, which keeps the search exact
- * (a bin may then hold distant particles, which the distance test drops). */
-static ump_status grid_build(mps *m, double h, ump_err *err)
-{
-    const part_set *s = m->s;
-    size_t n = s->n;
-    mps_grid *g = &m->g;
-    double xmin = HUGE_VAL, ymin = HUGE_VAL, xmax = -HUGE_VAL, ymax = -HUGE_VAL;
-    for (size_t i = 0; i < n; i++) {
-        if (!isfinite(s->x[i]) || !isfinite(s->y[i]))
-            return UMP_FAIL(err, UMP_ERR_INPUT, "MPS: particle %zu (id %lld) has a non-finite position", i,
-                            (long long)s->id[i]);
-        xmin = fmin(xmin, s->x[i]);
-        xmax = fmax(xmax, s->x[i]);
-        ymin = fmin(ymin, s->y[i]);
-        ymax = fmax(ymax, s->y[i]);
-    }
-    if (n == 0)
-        xmin = ymin = xmax = ymax = 0;
-    g->h = h;
-    g->x0 = xmin;
-    g->y0 = ymin;
-    g->nx = (long)floor((xmax - xmin) / h) + 1;
-    g->ny = (long)floor((ymax - ymin) / h) + 1;
-    /* a particle flung far away must not make the grid huge: beyond
-     * 4 bins per particle the box is cut, and the border bins take the rest */
-    while ((double)g->nx * (double)g->ny > 4.0 * (double)n + 1024) {
-        if (g->nx >= g->ny)
-            g->nx = g->nx / 2 + 1;
-        else
-            g->ny = g->ny / 2 + 1;
-    }
-    size_t nb = (size_t)g->nx * (size_t)g->ny;
-    if (nb + 1 > g->ncap) {
-        size_t nc = nb + 1 + nb / 2;
-        GROW_TO(g->off, nc);
-        GROW_TO(g->cur, nc);
-        g->ncap = nc;
-    }
-    memset(g->off, 0, sizeof *g->off * (nb + 1));
-    for (size_t i = 0; i < n; i++) {
-        long bx = (long)floor((s->x[i] - g->x0) / h), by = (long)floor((s->y[i] - g->y0) / h);
-        bx = bx < 0 ? 0 : bx >= g->nx ? g->nx - 1 : bx;
-        by = by < 0 ? 0 : by >= g->ny ? g->ny - 1 : by;
-        g->bin[i] = by * g->nx + bx;
-        g->off[g->bin[i] + 1]++;
-    }
-    for (size_t b = 0; b < nb; b++)
-        g->off[b + 1] += g->off[b];
-    /* stable: indices increase within a bin */
-    memcpy(g->cur, g->off, sizeof *g->cur * nb);
-    for (size_t i = 0; i < n; i++)
-        g->idx[g->cur[g->bin[i]]++] = i;
-    return UMP_OK;
-}
-
-/* Neighbours of particle i within radius re (m), any kind but i itself:
- * their number; with jj != NULL also, in increasing index, their indices,
- * offsets and distances (at most max; the count tells whether all fit).
- * Each of the 3 x 3 bins yields its particles in increasing index; the
- * candidates are gathered, then ordered by an insertion sort of their
- * positions (one small array moved instead of four). */
-static size_t gather(const mps *m, size_t i, double re, size_t *jj, double *ddx, double *ddy, double *rr,
-                     size_t max)
-{
-    enum { TMAX = 512 };
-    const part_set *s = m->s;
-    const mps_grid *g = &m->g;
-    long b = g->bin[i], bx = b % g->nx, by = b / g->nx;
-    double xi = s->x[i], yi = s->y[i], re2 = re * re;
-    size_t k = 0, tj[TMAX];
-    double tx[TMAX], ty[TMAX];
-    unsigned short ord[TMAX];
-    if (max > TMAX)
-        max = TMAX;
-    for (long y = by - 1; y <= by + 1; y++) {
-        if (y < 0 || y >= g->ny)
-            continue;
-        for (long x = bx - 1; x <= bx + 1; x++) {
-            if (x < 0 || x >= g->nx)
-                continue;
-            size_t c = (size_t)(y * g->nx + x);
-            for (size_t q = g->off[c]; q < g->off[c + 1]; q++) {
-                size_t j = g->idx[q];
-                if (j == i)
-                    continue;
-                double dx = s->x[j] - xi, dy = s->y[j] - yi;
-                if (dx * dx + dy * dy >= re2)
-                    continue;
-                if (jj && k < max) {
-                    tj[k] = j;
-                    tx[k] = dx;
-                    ty[k] = dy;
-                }
-                k++;
-            }
-        }
-    }
-    if (!jj)
-        return k;
-    size_t kk = k < max ? k : max;
-    for (size_t t = 0; t < kk; t++) {
-        unsigned short v = (unsigned short)t;
-        size_t u = t;
-        while (u > 0 && tj[ord[u - 1]] > tj[v]) {
-            ord[u] = ord[u - 1];
-            u--;
-        }
-        ord[u] = v;
-    }
-    for (size_t t = 0; t < kk; t++) {
-        unsigned short o = ord[t];
-        jj[t] = tj[o];
-        ddx[t] = tx[o];
-        ddy[t] = ty[o];
-        rr[t] = sqrt(tx[o] * tx[o] + ty[o] * ty[o]);
-    }
-    return k;
-}
-
-/* Rows within radius re (m) for the particles with need[i] (NULL: fluid
- * particles only; else kinds with need[kind] set). Two passes: count, then
- * fill, each parallel over particles. */
-static ump_status rows_build(mps *m, double re, const int need[3], ump_err *err)
-{
-    const part_set *s = m->s;
-    size_t n = s->n;
-    mps_rows *R = &m->rows;
-    size_t *off = R->off;
-    enum { MAXN = 512 };
-    int overflow = 0;
-#pragma omp parallel
-    {
-#pragma omp for schedule(static)
-        for (size_t i = 0; i < n; i++) {
-            size_t cnt = 0;
-            if (need[m->kind[i]]) {
-                cnt = gather(m, i, re, NULL, NULL, NULL, NULL, MAXN); /* count only */
-                if (cnt > MAXN) {
-#pragma omp atomic write
-                    overflow = 1;
-                }
-            }
-            off[i + 1] = cnt;
-        }
-    }
-    UMP_CHECK(!overflow, err, UMP_ERR_INPUT,
-              "MPS: a particle has more than %d neighbours within %g m: particles have collapsed onto each "
-              "other (the run has diverged)", MAXN, re);
-    off[0] = 0;
-    for (size_t i = 0; i < n; i++)
-        off[i + 1] += off[i];
-    size_t nz = off[n];
-    if (nz > R->cap) {
-        size_t nc = nz + nz / 2 + 64;
-        GROW_TO(R->j, nc);
-        GROW_TO(R->dx, nc);
-        GROW_TO(R->dy, nc);
-        GROW_TO(R->r, nc);
-        R->cap = nc;
-    }
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; i++)
-        if (off[i + 1] > off[i])
-            (void)gather(m, i, re, R->j + off[i], R->dx + off[i], R->dy + off[i], R->r + off[i],
-                         off[i + 1] - off[i]);
-    return UMP_OK;
-}
+/* ---- neighbours (pnbr.h) ----------------------------------------------------- */
 
 /* Rows of fluid and wall particles within the largest radius plus a skin
- * (a Verlet list): while no particle has moved by more than half the skin
- * since the build, the rows still hold every pair within the radius, and
- * refresh() only recomputes their offsets and distances -- one linked-list
- * search per step instead of three. The positions of the build are kept. */
-static ump_status neighbours(mps *m, ump_err *err)
+ * (a Verlet list, pnbr.h): at r^n a new search (force), at r* and after
+ * collisions an update that searches again only when some particle has
+ * moved by more than half the skin since the build. */
+static ump_status rows_update(mps *m, int force, ump_err *err)
 {
     static const int need[3] = {1, 1, 0};
-    double re = m->P.re_lap * m->P.l0 + MPS_SKIN * m->P.l0;
-    UMP_CALL(grid_build(m, re, err));
-    UMP_CALL(rows_build(m, re, need, err));
-    const part_set *s = m->s;
-    memcpy(m->xb, s->x, sizeof *m->xb * s->n);
-    memcpy(m->yb, s->y, sizeof *m->yb * s->n);
-    return UMP_OK;
+    return pnbr_update(&m->nb, m->s, m->kind, need, m->P.re_lap * m->P.l0, MPS_SKIN * m->P.l0, force, "MPS",
+                       err);
 }
-
-/* After a move: offsets and distances of the rows at the new positions, or
- * new rows when a particle has moved by more than half the skin. */
-static ump_status refresh(mps *m, ump_err *err)
-{
-    const part_set *s = m->s;
-    size_t n = s->n;
-    double d2max = 0;
-    for (size_t i = m->ns; i < n; i++) {
-        double dx = s->x[i] - m->xb[i], dy = s->y[i] - m->yb[i];
-        d2max = fmax(d2max, dx * dx + dy * dy);
-    }
-    double half = 0.5 * MPS_SKIN * m->P.l0;
-    if (!(d2max <= half * half))
-        return neighbours(m, err);
-    mps_rows *R = &m->rows;
-#pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; i++)
-        for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
-            size_t j = R->j[q];
-            double dx = s->x[j] - s->x[i], dy = s->y[j] - s->y[i];
-            R->dx[q] = dx;
-            R->dy[q] = dy;
-            R->r[q] = sqrt(dx * dx + dy * dy);
-        }
-    return UMP_OK;
-}
+static ump_status neighbours(mps *m, ump_err *err) { return rows_update(m, 1, err); }
+static ump_status refresh(mps *m, ump_err *err) { return rows_update(m, 0, err); }
 
 /* ---- matrices ---------------------------------------------------------------- */
 
@@ -500,7 +262,7 @@ static ump_status matrix_reserve(mps *m, size_t nrows, size_t nz, ump_err *err)
 static size_t laplace_row(const mps *m, size_t i, double d0, double c, double re, const unsigned char *in_sum,
                           ump_idx *col, double *val)
 {
-    const mps_rows *R = &m->rows;
+    const pnbr *R = &m->nb;
     size_t k = 0;
     double diag = d0;
     long me = m->unk[i];
@@ -535,7 +297,7 @@ static size_t laplace_row(const mps *m, size_t i, double d0, double c, double re
 static ump_status assemble(mps *m, size_t nu, double d0, double c, double re, const unsigned char in_sum[3],
                            ump_err *err)
 {
-    const mps_rows *R = &m->rows;
+    const pnbr *R = &m->nb;
     size_t nz = 0;
     for (size_t k = 0; k < nu; k++) {
         size_t i = m->unk_part[k];
@@ -625,7 +387,7 @@ static size_t collide(mps *m, double dt)
     part_set *s = m->s;
     size_t n = s->n, ns = m->ns, hits = 0;
     const double dc = m->P.collision * m->P.l0, e = m->P.restitution;
-    const mps_rows *R = &m->rows;
+    const pnbr *R = &m->nb;
 #pragma omp parallel for schedule(static) reduction(+ : hits)
     for (size_t i = ns; i < n; i++) {
         double du = 0, dv = 0;
@@ -662,7 +424,7 @@ static void density(mps *m)
 {
     const part_set *s = m->s;
     size_t n = s->n;
-    const mps_rows *R = &m->rows;
+    const pnbr *R = &m->nb;
     const double beta = m->P.beta, n0 = m->n0_n;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
@@ -788,7 +550,7 @@ static ump_status pressure(mps *m, double dt, mps_stats *st, ump_err *err)
     const mps_params *P = &m->P;
     size_t nu = 0, nsurf = 0;
     for (size_t i = 0; i < n; i++) {
-        int take = m->kind[i] != MPS_DUMMY && !m->surf[i] && m->rows.off[i + 1] > m->rows.off[i];
+        int take = m->kind[i] != MPS_DUMMY && !m->surf[i] && m->nb.off[i + 1] > m->nb.off[i];
         if (m->kind[i] == MPS_FLUID && m->surf[i])
             nsurf++;
         if (take) {
@@ -833,7 +595,7 @@ static void gradient(const mps *m, const double *p, double *gxo, double *gyo)
 {
     const part_set *s = m->s;
     size_t n = s->n, ns = m->ns;
-    const mps_rows *R = &m->rows;
+    const pnbr *R = &m->nb;
     const double re = m->P.re_n, l0 = m->P.l0, k = DIM / m->n0_n;
 #pragma omp parallel for schedule(static)
     for (size_t i = ns; i < n; i++) {
