@@ -865,7 +865,9 @@ ump_status case_read_umppm(const char *case_dir, case_umppm *u, ump_err *err)
 
 /* ---- meshlessFoam ----------------------------------------------------------- */
 
-static const char *const method_words[] = {"MPS", NULL};
+static const char *const method_words[] = {"MPS", "FPM", NULL};
+static const char *const weight_words[] = {"spline", "exponential", NULL};
+static const int weight_values[] = {5, 4};
 static const char *const source_words[] = {"density", "mixed", NULL};
 static const int source_values[] = {0, 1};
 
@@ -875,7 +877,8 @@ static const int source_values[] = {0, 1};
 
 static const case_option meshless_options[] = {
     {"method", CASE_OPT_CHOICE, "MPS", 0, method_words, NULL, UM_NORANGE,
-     "particle method: MPS (fully implicit moving particle semi-implicit)", ML_FIELD(method)},
+     "particle method: MPS (fully implicit moving particle semi-implicit) or FPM (finite particle method)",
+     ML_FIELD(method)},
     {"spacing", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_GE(0),
      "particle spacing l0 [m]; 0: half the median cell size of the mesh", ML_FIELD(spacing)},
     {"reNumberDensity", CASE_OPT_SCALAR, "3.1", 3.1, NULL, NULL, ML_RANGE(1, 6),
@@ -906,6 +909,18 @@ static const case_option meshless_options[] = {
      "name of the particle cloud under <time>/lagrangian/", ML_FIELD(cloud_name)},
     {"maxVelocity", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_GE(0),
      "stop when a particle |U| exceeds it; 0: max(10 sqrt(2 |g| H), 10 |U0|max, 1 m/s)", ML_FIELD(max_velocity)},
+    {"supportRadius", CASE_OPT_SCALAR, "3", 3, NULL, NULL, ML_CLOSED(2, 6),
+     "FPM: support radius h0 of the MLS weights / l0", ML_FIELD(support)},
+    {"weightFunction", CASE_OPT_CHOICE, "spline", 5, weight_words, weight_values, UM_NORANGE,
+     "FPM: MLS weight, spline (Eq. 5) or exponential (Eq. 4)", ML_FIELD(weight)},
+    {"courantFPM", CASE_OPT_SCALAR, "0.12", 0.12, NULL, NULL, ML_RANGE(0, 1),
+     "FPM: dt <= courantFPM h0 / |U|max (Eq. 26), with adjustTimeStep", ML_FIELD(fpm_co)},
+    {"gravityStepFPM", CASE_OPT_SCALAR, "0.24", 0.24, NULL, NULL, ML_RANGE(0, 1),
+     "FPM: dt <= gravityStepFPM sqrt(h0 / |g|) (Eq. 27), with adjustTimeStep", ML_FIELD(fpm_cg)},
+    {"surfaceRadius", CASE_OPT_SCALAR, "2.1", 2.1, NULL, NULL, ML_RANGE(1, 4),
+     "FPM: radius / l0 of the number density of the free-surface test", ML_FIELD(re_s)},
+    {"surfaceBeta", CASE_OPT_SCALAR, "0.95", 0.95, NULL, NULL, UM_OPEN01,
+     "FPM: free surface where the number density < surfaceBeta n0", ML_FIELD(beta_s)},
 };
 
 static const case_opt_table meshless_table = {"meshless", meshless_options,

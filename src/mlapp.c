@@ -41,6 +41,7 @@
 #include "umppm/field.h"
 #include "umppm/fieldio.h"
 #include "umppm/foam.h"
+#include "umppm/fpm.h"
 #include "umppm/mesh2d.h"
 #include "umppm/mlseed.h"
 #include "umppm/mps.h"
@@ -72,8 +73,12 @@ typedef struct mlapp {
     unsigned char *wall_patch;       /* [npatches] */
     part_set *s;
     unsigned char *kinds;            /* [nsolid] */
-    mps *solver;
+    mps *solver;                     /* method MPS */
     mps_params prm;
+    fpm *fpm;                        /* method FPM */
+    fpm_params fprm;
+    ump_idx *wall_face;              /* FPM: the wall face of each wall point [nwall] */
+    double *wnx, *wny;               /* FPM: their outward normals at seeding [nwall] */
     double g2[2];                    /* gravity in the plane */
     double *prev_x, *prev_y;         /* fluid positions before the step [cap] */
     ump_idx *prev_cell;
@@ -100,6 +105,10 @@ static void mlapp_free(mlapp *a)
     fld_free(&a->p);
     free(a->wall_patch);
     mps_free(&a->solver);
+    fpm_free(&a->fpm);
+    free(a->wall_face);
+    free(a->wnx);
+    free(a->wny);
     part_free(&a->s);
     free(a->kinds);
     free(a->prev_x);
@@ -115,6 +124,22 @@ static void mlapp_free(mlapp *a)
     free(a->written);
     mesh_free(&a->m);
     pmesh_free(&a->pm);
+}
+
+/* The particle method's per-particle results, whichever it is. */
+static size_t ml_nsolid(const mlapp *a) { return a->fpm ? fpm_nsolid(a->fpm) : mps_nsolid(a->solver); }
+static const double *ml_pressure(const mlapp *a) { return a->fpm ? fpm_pressure(a->fpm) : mps_pressure(a->solver); }
+static const double *ml_density(const mlapp *a) { return a->fpm ? fpm_density(a->fpm) : mps_density(a->solver); }
+static const unsigned char *ml_surface(const mlapp *a)
+{
+    return a->fpm ? fpm_surface(a->fpm) : mps_surface(a->solver);
+}
+static void ml_compact(mlapp *a, const unsigned char *keep, size_t n_before)
+{
+    if (a->fpm)
+        fpm_compact(a->fpm, keep, n_before);
+    else
+        mps_compact(a->solver, keep, n_before);
 }
 
 /* ---- set-up ---------------------------------------------------------------- */
@@ -255,25 +280,37 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
     P->p_tol = a->ml.p_tol;
     P->u_tol = a->ml.u_tol;
     P->maxit = (int)(a->ml.maxit > 1000000000L ? 1000000000L : a->ml.maxit);
-    /* wall particles within r_e(n) of the wall; dummies so that every wall
-     * particle has a full neighbourhood and every fluid particle a full
-     * Laplacian stencil (docs/METHOD.md section 9) */
+    int is_fpm = strcmp(a->ml.method, "FPM") == 0;
+    /* MPS: wall particles within r_e(n) of the wall; dummies so that every
+     * wall particle has a full neighbourhood and every fluid particle a
+     * full Laplacian stencil (docs/METHOD.md section 9). FPM: points on the
+     * wall faces (the boundary particles), then ghosts behind the walls as
+     * deep as the free-surface test reaches (docs/METHOD.md section 11). */
     double wall_depth = P->re_n * l0, thick = fmax(2 * P->re_n, P->re_lap + 0.5) * l0;
+    if (is_fpm)
+        wall_depth = thick = (a->ml.re_s + 1) * l0;
     UMP_CALL(part_create(1024, &a->s, err));
+    size_t nwp = 0;
+    if (is_fpm)
+        UMP_CALL(mlseed_wall_points(m, a->wall_patch, l0, a->s, &a->wnx, &a->wny, &a->wall_face, &nwp, err));
     double *uc = ump_alloc_array((size_t)m->ncells + 1, sizeof *uc), *vc = ump_alloc_array((size_t)m->ncells + 1,
                                                                                          sizeof *vc);
-    UMP_CHECK(uc && vc, err, UMP_ERR_NOMEM, "out of memory");
+    if (!uc || !vc) {
+        free(uc);
+        free(vc);
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
+    }
     for (ump_idx c = 0; c < m->ncells; c++) {
         uc[c] = a->U->internal[3 * (size_t)c + (size_t)m->ax[0]];
         vc[c] = a->U->internal[3 * (size_t)c + (size_t)m->ax[1]];
     }
     mlseed_stats ss;
     ump_status rc = mlseed_build(m, a->alpha->internal, uc, vc, a->wall_patch, l0, wall_depth, thick, a->s,
-                                 &a->kinds, &ss, err);
+                                 &a->kinds, NULL, &ss, err);
     free(uc);
     free(vc);
     UMP_CALL(rc);
-    size_t ns = ss.nwall + ss.ndummy;
+    size_t ns = nwp + ss.nwall + ss.ndummy;
     /* a restart: the fluid particles of the start time's cloud */
     char dir[4400], cdir[4600];
     snprintf(dir, sizeof dir, "%s/%s", a->case_dir, tname);
@@ -316,9 +353,6 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
             a->s->id[i] = id++;
         a->s->next_id = id;
     }
-    UMP_CALL(mps_create(P, a->s, ns, a->kinds, &a->solver, err));
-    double n0n, n0l, lam;
-    mps_constants(a->solver, &n0n, &n0l, &lam);
     printf("Particles: spacing l0 = %g m (%s), lattice origin (%g %g)\n", l0,
            a->ml.spacing > 0 ? "meshless spacing" : "half the median cell size", ss.x0, ss.y0);
     if (restart)
@@ -326,6 +360,33 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
                a->ml.cloud_name);
     else
         printf("    fluid:  %zu (lattice points in cells with alpha.%s >= 0.5)\n", ss.nfluid, a->ph.name[0]);
+    if (is_fpm) {
+        fpm_params *F = &a->fprm;
+        memset(F, 0, sizeof *F);
+        F->l0 = l0;
+        F->h = a->ml.support * l0;
+        F->weight = a->ml.weight == 4 ? MLS_WFUN_EXP : MLS_WFUN_SPLINE;
+        F->rho = P->rho;
+        F->nu = P->nu;
+        F->g[0] = P->g[0];
+        F->g[1] = P->g[1];
+        F->re_s = a->ml.re_s;
+        F->beta = a->ml.beta_s;
+        F->p_tol = P->p_tol;
+        F->maxit = P->maxit;
+        UMP_CALL(fpm_create(F, a->s, nwp, ns, a->wnx, a->wny, &a->fpm, err));
+        printf("    walls:  %zu points on the wall faces (Neumann pressure, no-slip), %zu ghost particles behind "
+               "them (to %g m, for the free-surface test only)\n", nwp, ss.nwall + ss.ndummy, thick);
+        printf("FPM: support radius h0 = %g l0 = %g m, weight %s; free surface where n < %g n0 (n0 = %.6g, "
+               "radius %g l0); time step Eqs. 26-27: dt <= %g h0/|U|max, dt <= %g sqrt(h0/|g|)%s\n",
+               a->ml.support, F->h, F->weight == MLS_WFUN_SPLINE ? "spline (Eq. 5)" : "exponential (Eq. 4)",
+               F->beta, fpm_n0(a->fpm), F->re_s, a->ml.fpm_co, a->ml.fpm_cg,
+               F->nu > 0 ? ", dt <= 0.1 l0^2/nu (explicit viscosity)" : "");
+        return UMP_OK;
+    }
+    UMP_CALL(mps_create(P, a->s, ns, a->kinds, &a->solver, err));
+    double n0n, n0l, lam;
+    mps_constants(a->solver, &n0n, &n0l, &lam);
     printf("    walls:  %zu wall particles (within %g m of the wall patches), %zu dummy particles (to %g m)\n",
            ss.nwall, wall_depth, ss.ndummy, thick);
     printf("MPS: r_e = %g l0 (number density, gradient), %g l0 (Laplacian); n0 = %.6g, %.6g; lambda = %.6g m^2 "
@@ -347,7 +408,7 @@ static ump_status fill_fields(mlapp *a, ump_err *err)
 {
     const mesh2d *m = a->m;
     const part_set *s = a->s;
-    size_t ns = mps_nsolid(a->solver), nc = (size_t)m->ncells;
+    size_t ns = ml_nsolid(a), nc = (size_t)m->ncells;
     if (!a->cnt) {
         a->cnt = ump_alloc_array(nc + 1, sizeof *a->cnt);
         a->su = ump_alloc_array(nc + 1, sizeof *a->su);
@@ -359,7 +420,7 @@ static ump_status fill_fields(mlapp *a, ump_err *err)
     memset(a->su, 0, nc * sizeof *a->su);
     memset(a->sv, 0, nc * sizeof *a->sv);
     memset(a->sp, 0, nc * sizeof *a->sp);
-    const double *pr = mps_pressure(a->solver);
+    const double *pr = ml_pressure(a);
     for (size_t i = ns; i < s->n; i++) {
         ump_idx c = s->cell[i];
         if (c < 0)
@@ -443,7 +504,7 @@ static ump_status write_time(mlapp *a, const rt_time *t, ump_err *err)
     UMP_CALL(fio_timedir_begin(a->case_dir, t->name, &td, err));
     const part_set *s = a->s;
     const mesh2d *m = a->m;
-    size_t ns = mps_nsolid(a->solver), nf = s->n - ns;
+    size_t ns = ml_nsolid(a), nf = s->n - ns;
     double *pos = ump_alloc_array(3 * nf + 3, sizeof *pos), *vel = ump_alloc_array(3 * nf + 3, sizeof *vel);
     double *sc = ump_alloc_array(nf + 1, sizeof *sc);
     ump_status rc = UMP_OK;
@@ -465,13 +526,13 @@ static ump_status write_time(mlapp *a, const rt_time *t, ump_err *err)
         rc = fio_write_cloud(td.tmp_dir, t->name, a->ml.cloud_name, nf, pos, vel, s->cell + ns, s->id + ns,
                              a->ctl.write_precision, err);
     if (rc == UMP_OK)
-        rc = fio_write_cloud_field(td.tmp_dir, t->name, a->ml.cloud_name, "p", 1, nf, mps_pressure(a->solver) + ns,
+        rc = fio_write_cloud_field(td.tmp_dir, t->name, a->ml.cloud_name, "p", 1, nf, ml_pressure(a) + ns,
                                    a->ctl.write_precision, err);
     if (rc == UMP_OK)
         rc = fio_write_cloud_field(td.tmp_dir, t->name, a->ml.cloud_name, "numberDensity", 1, nf,
-                                   mps_density(a->solver) + ns, a->ctl.write_precision, err);
+                                   ml_density(a) + ns, a->ctl.write_precision, err);
     if (rc == UMP_OK) {
-        const unsigned char *fs = mps_surface(a->solver);
+        const unsigned char *fs = ml_surface(a);
         for (size_t k = 0; k < nf; k++)
             sc[k] = fs[ns + k];
         rc = fio_write_cloud_field(td.tmp_dir, t->name, a->ml.cloud_name, "freeSurface", 1, nf, sc,
@@ -541,7 +602,7 @@ static ump_status relocate(mlapp *a, size_t *left, size_t *walled, size_t *lost,
 {
     part_set *s = a->s;
     const mesh2d *m = a->m;
-    size_t ns = mps_nsolid(a->solver), n = s->n, nl = 0, nw = 0, nx = 0;
+    size_t ns = ml_nsolid(a), n = s->n, nl = 0, nw = 0, nx = 0;
     for (size_t i = 0; i < ns; i++)
         a->keep[i] = 1;
 #pragma omp parallel for schedule(static) reduction(+ : nl, nw, nx)
@@ -575,7 +636,7 @@ static ump_status relocate(mlapp *a, size_t *left, size_t *walled, size_t *lost,
     if (nl + nx > 0) {
         size_t nb = s->n;
         part_compact(s, a->keep);
-        mps_compact(a->solver, a->keep, nb);
+        ml_compact(a, a->keep, nb);
     }
     *left = nl;
     *walled = nw;
@@ -588,7 +649,7 @@ static ump_status relocate(mlapp *a, size_t *left, size_t *walled, size_t *lost,
 static void speeds(const mlapp *a, double *umax, double *umean, size_t *imax)
 {
     const part_set *s = a->s;
-    size_t ns = mps_nsolid(a->solver);
+    size_t ns = ml_nsolid(a);
     double mx = 0, sum = 0;
     size_t im = ns;
     for (size_t i = ns; i < s->n; i++) {
@@ -613,7 +674,7 @@ static double wave_speed(const mlapp *a)
     if (g == 0)
         return 0;
     double ex = a->g2[0] / g, ey = a->g2[1] / g, lo = HUGE_VAL, hi = -HUGE_VAL;
-    for (size_t i = mps_nsolid(a->solver); i < s->n; i++) {
+    for (size_t i = ml_nsolid(a); i < s->n; i++) {
         double h = s->x[i] * ex + s->y[i] * ey;
         lo = fmin(lo, h);
         hi = fmax(hi, h);
@@ -692,9 +753,16 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
     const double l0 = a.prm.l0;
     double umax, umean, u_g = wave_speed(&a);
     speeds(&a, &umax, &umean, NULL);
+    /* FPM: the Courant number handed to adjustTimeStep is maxCo dt / dt_max
+     * (Eqs. 26-27), so that the step becomes dt_max */
     if (a.ctl.adjust_time_step)
-        rt_set_initial_delta_t(&t, fmax(umax, u_g) * t.delta_t / l0);
-    if (a.ctl.adjust_time_step)
+        rt_set_initial_delta_t(&t, a.fpm ? a.ml.max_co * t.delta_t / fpm_max_dt(a.fpm, a.ml.fpm_co, a.ml.fpm_cg, u_g)
+                                         : fmax(umax, u_g) * t.delta_t / l0);
+    if (a.ctl.adjust_time_step && a.fpm)
+        printf("adjustTimeStep: the time step of Eqs. 26-27 (courantFPM %g, gravityStepFPM %g; controlDict's "
+               "maxCo %g is interFoam's cell Courant number and is not used)\n", a.ml.fpm_co, a.ml.fpm_cg,
+               a.ctl.max_co);
+    else if (a.ctl.adjust_time_step)
         printf("adjustTimeStep: maxCo %g on the particle spacing (meshless maxCo; controlDict's maxCo %g is "
                "interFoam's cell Courant number and is not used), speed max(|U|, sqrt(|g| H) = %g m/s)\n",
                a.ml.max_co, a.ctl.max_co, u_g);
@@ -702,14 +770,18 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
     long step = 0;
     size_t run_left = 0, run_walled = 0, run_lost = 0;
     double stage_cpu[5] = {0}, stage_wall[5] = {0};
-    static const char *const stage_name[5] = {"neighbours, number density", "viscosity (implicit, CG)",
-                                              "pressure (PPE, CG)", "correction", "locate on the mesh"};
+    static const char *const mps_stage[5] = {"neighbours, number density", "viscosity (implicit, CG)",
+                                             "pressure (PPE, CG)", "correction", "locate on the mesh"};
+    static const char *const fpm_stage[5] = {"neighbours, MLS coefficients", "predictor (explicit)",
+                                             "pressure (PPE, BiCGSTAB)", "correction", "locate on the mesh"};
+    const char *const *stage_name = a.fpm ? fpm_stage : mps_stage;
     while (rt_running(&t)) {
         /* umax, umean: of the start fields, then of the step before */
         u_g = wave_speed(&a);
         printf("Courant Number mean: %g max: %g\n", umean * t.delta_t / l0, umax * t.delta_t / l0);
         if (a.ctl.adjust_time_step) {
-            rt_adjust_delta_t(&t, fmax(umax, u_g) * t.delta_t / l0);
+            rt_adjust_delta_t(&t, a.fpm ? a.ml.max_co * t.delta_t / fpm_max_dt(a.fpm, a.ml.fpm_co, a.ml.fpm_cg, u_g)
+                                        : fmax(umax, u_g) * t.delta_t / l0);
             printf("deltaT = %g\n", t.delta_t);
         }
         rt_advance(&t);
@@ -719,15 +791,25 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         printf("Time = %s\n\n", t.name);
         if ((rc = reserve_prev(&a, err)) != UMP_OK)
             goto done;
-        size_t ns = mps_nsolid(a.solver);
+        size_t ns = ml_nsolid(&a);
         for (size_t i = ns; i < a.s->n; i++) {
             a.prev_x[i] = a.s->x[i];
             a.prev_y[i] = a.s->y[i];
             a.prev_cell[i] = a.s->cell[i];
         }
         mps_stats st;
-        if ((rc = mps_step(a.solver, t.delta_t, &st, err)) != UMP_OK)
+        fpm_stats fst;
+        memset(&st, 0, sizeof st);
+        if (a.fpm)
+            rc = fpm_step(a.fpm, t.delta_t, &fst, err);
+        else
+            rc = mps_step(a.solver, t.delta_t, &st, err);
+        if (rc != UMP_OK)
             goto done;
+        if (a.fpm) {
+            memcpy(st.cpu, fst.cpu, sizeof st.cpu);
+            memcpy(st.wall, fst.wall, sizeof st.wall);
+        }
         double c1 = (double)clock() / CLOCKS_PER_SEC, w1 = wall_seconds();
         size_t left, walled, lost;
         if ((rc = relocate(&a, &left, &walled, &lost, err)) != UMP_OK)
@@ -741,8 +823,14 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         run_left += left;
         run_walled += walled;
         run_lost += lost;
-        printf("MPS: %zu fluid particles, %zu on the free surface, %zu pressure unknowns, %zu collisions; "
-               "n*/n0 min %.4g max %.4g\n", st.nfluid, st.nsurface, st.nunknowns, st.collisions, st.n_min, st.n_max);
+        if (a.fpm)
+            printf("FPM: %zu fluid particles, %zu on the free surface, %zu pressure unknowns (%zu wet wall points), "
+                   "%zu linear MLS fits; n/n0 min %.4g max %.4g\n", fst.nfluid, fst.nsurface, fst.nunknowns,
+                   fst.nneumann, fst.nlinear, fst.n_min, fst.n_max);
+        else
+            printf("MPS: %zu fluid particles, %zu on the free surface, %zu pressure unknowns, %zu collisions; "
+                   "n*/n0 min %.4g max %.4g\n", st.nfluid, st.nsurface, st.nunknowns, st.collisions, st.n_min,
+                   st.n_max);
         /* the speeds after the step: logged, checked by the guard, and the
          * Courant number of the next step */
         size_t imax;
@@ -750,17 +838,24 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         if (imax < a.s->n)
             printf("Velocity: |U| mean %g max %g m/s (particle %lld at (%g %g)%s)\n", umean, umax,
                    (long long)a.s->id[imax], a.s->x[imax], a.s->y[imax],
-                   mps_surface(a.solver)[imax] ? ", free surface" : "");
-        if (a.prm.nu > 0)
+                   ml_surface(&a)[imax] ? ", free surface" : "");
+        if (a.fpm) {
+            printf("BiCGSTAB:  Solving for p, Initial residual = %g, Final residual = %g, No Iterations %d%s\n",
+                   fst.pres.res0, fst.pres.res, fst.pres.iterations,
+                   fst.pres.converged ? "" : " (not converged)");
+            st.p_min = fst.p_min;
+            st.p_max = fst.p_max;
+        } else if (a.prm.nu > 0)
             for (int d = 0; d < 2; d++)
                 printf("DICPCG:  Solving for %s, Initial residual = %g, Final residual = %g, No Iterations %d\n",
                        a.m->ax[d] == 0 ? "Ux" : a.m->ax[d] == 1 ? "Uy" : "Uz", st.visc[d].res0, st.visc[d].res,
                        st.visc[d].iterations);
-        printf("DICPCG:  Solving for p, Initial residual = %g, Final residual = %g, No Iterations %d\n",
-               st.pres.res0, st.pres.res, st.pres.iterations);
+        if (!a.fpm)
+            printf("DICPCG:  Solving for p, Initial residual = %g, Final residual = %g, No Iterations %d\n",
+                   st.pres.res0, st.pres.res, st.pres.iterations);
         printf("Pressure: min %g max %g Pa\n", st.p_min, st.p_max);
         printf("Particles: %zu (left through open boundaries %zu, stopped at walls %zu%s)\n",
-               a.s->n - mps_nsolid(a.solver), left, walled, lost ? ", LOST" : "");
+               a.s->n - ml_nsolid(&a), left, walled, lost ? ", LOST" : "");
         if (lost)
             printf("--> meshlessFoam Warning: %zu particles could not be located on the mesh and were removed\n",
                    lost);

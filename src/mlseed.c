@@ -42,10 +42,13 @@ static double seg_dist(double px, double py, double ax, double ay, double bx, do
 
 ump_status mlseed_build(const mesh2d *m, const double *alpha, const double *u, const double *v,
                         const unsigned char *wall_patch, double l0, double wall_depth, double thick, part_set *s,
-                        unsigned char **kinds, mlseed_stats *st, ump_err *err)
+                        unsigned char **kinds, ump_idx **solid_face, mlseed_stats *st, ump_err *err)
 {
     memset(st, 0, sizeof *st);
     *kinds = NULL;
+    if (solid_face)
+        *solid_face = NULL;
+    ump_idx *sface = NULL;
     UMP_CHECK(l0 > 0 && thick >= wall_depth && wall_depth > 0, err, UMP_ERR_INPUT,
               "particle seeding: spacing %g, wall depth %g, solid thickness %g", l0, wall_depth, thick);
     double xmin = HUGE_VAL, ymin = HUGE_VAL, xmax = -HUGE_VAL, ymax = -HUGE_VAL;
@@ -138,7 +141,8 @@ ump_status mlseed_build(const mesh2d *m, const double *alpha, const double *u, c
     /* 3. classify: solid points (outside, nearest boundary face a wall
      * within thick), fluid points (inside a cell with alpha >= 1/2) */
     kind = ump_alloc_array(np, sizeof *kind);
-    if (!kind) {
+    sface = ump_alloc_array(np, sizeof *sface);
+    if (!kind || !sface) {
         rc = UMP_FAIL(err, UMP_ERR_NOMEM, "particle seeding: out of memory");
         goto done;
     }
@@ -171,13 +175,16 @@ ump_status mlseed_build(const mesh2d *m, const double *alpha, const double *u, c
         if (bf < 0 || best > thick || !wall_patch[m->face_patch[bf]])
             continue;
         kind[q] = best < wall_depth ? MPS_WALL : MPS_DUMMY;
+        sface[q] = bf;
     }
     /* 4. append: solid first (wall, then dummy), then fluid */
     size_t nsolid = 0;
     for (size_t q = 0; q < np; q++)
         nsolid += kind[q] == MPS_WALL || kind[q] == MPS_DUMMY;
     *kinds = ump_alloc_array(nsolid + 1, sizeof **kinds);
-    if (!*kinds) {
+    if (solid_face)
+        *solid_face = ump_alloc_array(nsolid + 1, sizeof **solid_face);
+    if (!*kinds || (solid_face && !*solid_face)) {
         rc = UMP_FAIL(err, UMP_ERR_NOMEM, "particle seeding: out of memory");
         goto done;
     }
@@ -191,8 +198,11 @@ ump_status mlseed_build(const mesh2d *m, const double *alpha, const double *u, c
             ump_idx c = want == MPS_FLUID ? owner[q] : -1;
             double uu = c >= 0 && u ? u[c] : 0, vv = c >= 0 && v ? v[c] : 0;
             rc = part_add(s, PX(i), PY(j), uu, vv, 0, c, NULL, err);
-            if (want != MPS_FLUID)
+            if (want != MPS_FLUID) {
+                if (solid_face)
+                    (*solid_face)[ks] = sface[q];
                 (*kinds)[ks++] = want;
+            }
             if (want == MPS_WALL)
                 st->nwall++;
             else if (want == MPS_DUMMY)
@@ -210,10 +220,63 @@ done:
     if (rc != UMP_OK) {
         free(*kinds);
         *kinds = NULL;
+        if (solid_face) {
+            free(*solid_face);
+            *solid_face = NULL;
+        }
     }
+    free(sface);
     free(owner);
     free(kind);
     free(bin_off);
     free(bin_face);
     return rc;
+}
+
+ump_status mlseed_wall_points(const mesh2d *m, const unsigned char *wall_patch, double l0, part_set *s, double **nx,
+                              double **ny, ump_idx **face, size_t *count, ump_err *err)
+{
+    *nx = *ny = NULL;
+    *face = NULL;
+    *count = 0;
+    UMP_CHECK(l0 > 0, err, UMP_ERR_INPUT, "wall points: spacing %g", l0);
+    size_t np = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        size_t k = 0;
+        for (ump_idx f = m->ninternal; f < m->nfaces; f++) {
+            if (!wall_patch[m->face_patch[f]])
+                continue;
+            double ax = m->vx[m->fv0[f]], ay = m->vy[m->fv0[f]], bx = m->vx[m->fv1[f]], by = m->vy[m->fv1[f]];
+            double len = hypot(bx - ax, by - ay);
+            long nseg = (long)ceil(len / l0 - 1e-9);
+            nseg = nseg < 1 ? 1 : nseg;
+            if (pass == 0) {
+                np += (size_t)nseg;
+                continue;
+            }
+            for (long t = 0; t < nseg; t++) {
+                double a = ((double)t + 0.5) / (double)nseg;
+                UMP_CALL(part_add(s, ax + a * (bx - ax), ay + a * (by - ay), 0, 0, 0, m->owner[f], NULL, err));
+                (*nx)[k] = m->nx[f];
+                (*ny)[k] = m->ny[f];
+                (*face)[k] = f;
+                k++;
+            }
+        }
+        if (pass == 0) {
+            *nx = ump_alloc_array(np + 1, sizeof **nx);
+            *ny = ump_alloc_array(np + 1, sizeof **ny);
+            *face = ump_alloc_array(np + 1, sizeof **face);
+            if (!*nx || !*ny || !*face) {
+                free(*nx);
+                free(*ny);
+                free(*face);
+                *nx = *ny = NULL;
+                *face = NULL;
+                return UMP_FAIL(err, UMP_ERR_NOMEM, "wall points: out of memory");
+            }
+        }
+    }
+    *count = np;
+    return UMP_OK;
 }

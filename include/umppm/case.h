@@ -189,7 +189,11 @@ ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *e
  *              beta 0.98; lambda 0; sourceTerm mixed; gamma 0.1;
  *              collisionDistance 0.5; restitution 0.2; maxCo 0.2;
  *              pressureTolerance 1e-8; velocityTolerance 1e-10;
- *              maxIter 5000; cloudName meshlessCloud; maxVelocity 0; } */
+ *              maxIter 5000; cloudName meshlessCloud; maxVelocity 0;
+ *              supportRadius 3; weightFunction spline; courantFPM 0.12;
+ *              gravityStepFPM 0.24; surfaceRadius 2.1; surfaceBeta 0.95; }
+ * (the last six serve method FPM; reNumberDensity .. restitution and
+ * maxCo serve MPS) */
 typedef struct case_meshless {
     char method[16];             /* MPS */
     double spacing;              /* l0 [m]; 0: from the mesh */
@@ -205,6 +209,11 @@ typedef struct case_meshless {
     long maxit;
     char cloud_name[64];
     double max_velocity;         /* divergence bound; 0: from g and the domain */
+    /* method FPM (fpm.h) */
+    double support;              /* h0 / l0 */
+    int weight;                  /* 5: spline (Eq. 5), 4: exponential (Eq. 4) */
+    double fpm_co, fpm_cg;       /* coefficients of Eqs. 26, 27 */
+    double re_s, beta_s;         /* free-surface number density: radius / l0, threshold */
 } case_meshless;
 
 const case_option *case_meshless_options(size_t *n);

@@ -47,6 +47,19 @@ double mlseed_default_spacing(const mesh2d *m);
  * 10^8 points (a spacing far too small for the mesh). */
 ump_status mlseed_build(const mesh2d *m, const double *alpha, const double *u, const double *v,
                         const unsigned char *wall_patch, double l0, double wall_depth, double thick, part_set *s,
-                        unsigned char **kinds, mlseed_stats *st, ump_err *err);
+                        unsigned char **kinds, ump_idx **solid_face, mlseed_stats *st, ump_err *err);
+/* solid_face (may be NULL): *solid_face gets, for each solid particle,
+ * its nearest wall face (caller frees) -- the patch that carries it when
+ * walls move. Particles are appended: s need not be empty. */
+
+/* Points on the wall faces themselves (the boundary particles of the
+ * finite particle method, fpm.h): a wall face of length L gets
+ * k = ceil(L / l0) points at the centres of its k equal parts (spacing at
+ * most l0; a corner is thus flanked by two points l0/2 or less from it),
+ * each with the face's outward unit normal and its face index, velocity 0,
+ * cell the face's owner. Appended to s; *nx, *ny, *face [*count] are
+ * allocated (caller frees). */
+ump_status mlseed_wall_points(const mesh2d *m, const unsigned char *wall_patch, double l0, part_set *s, double **nx,
+                              double **ny, ump_idx **face, size_t *count, ump_err *err);
 
 #endif

@@ -1,0 +1,114 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * fpm.h -- free-surface flow on particles by the finite particle method
+ * (module prefix fpm_); the numerics of meshlessFoam with `method FPM`
+ * (docs/METHOD.md section 11).
+ *
+ * Source: Lu, Hu, Chang, Li & Wei, "Grid-free modelling based on the finite
+ * particle method for incompressible viscous flow problems", Mathematical
+ * Problems in Engineering 2019, 5623657 [LHC19]. Equation numbers in
+ * comments are theirs:
+ *   MLS fit and its full first and second derivatives     Eqs. 1-18 (mls_full)
+ *   move  x^{n+1} = x^n + dt u^n                          Eq. 21
+ *   predictor  u~ = u^n + dt (nu lap u^n + g)             Eq. 21
+ *   correction u^{n+1} = u~ - dt/rho grad p^{n+1}          Eq. 22
+ *   pressure Poisson equation lap p = rho/dt div u~        Eq. 24
+ *   on walls dp/dn = rho n.(g - Du/Dt) + mu n.lap u        Eq. 25
+ *   on the free surface p = 0
+ *   time step dt <= 0.12 h0/|U|max, dt <= 0.24 sqrt(h0/|g|)  Eqs. 26-27
+ *     (|U|max at least sqrt(|g| H), the celerity of the free surface's
+ *     gravity waves: see fpm_max_dt)
+ * All derivatives are MLS derivatives on the particles at x^{n+1}; the
+ * pressure system is solved by BiCGSTAB (van der Vorst 1992) with ILU(0).
+ *
+ * Particles (one part_set): [0, nwall) boundary points ON the wall
+ * surfaces, each with its outward unit normal (they carry the wall's
+ * velocity and take part in the MLS stencils: no-slip, and the Neumann
+ * rows of Eq. 25); [nwall, nsolid) ghost particles behind the walls, on
+ * the fluid's lattice (mlseed.h), which only complete the number density
+ * of the free-surface test near walls; [nsolid, n) fluid particles.
+ *
+ * Where the paper is silent (docs/METHOD.md section 11 gives the reasons):
+ * the free surface is found by the number density of the MPS kernel,
+ * n_i < beta n0 with r_s = 2.1 l0 over fluid and ghost particles (a wall
+ * point with n < beta n0 is dry: p = 0 there as well); a fluid particle
+ * whose MLS fit falls back to the linear basis (too few neighbours) is a
+ * free-surface particle; the explicit viscous term adds dt <= 0.1 l0^2/nu
+ * to Eqs. 26-27; the Neumann rows are scaled by -l0 so that the matrix has
+ * one sign on its diagonal (it changes nothing but ILU(0)'s pivots).
+ */
+#ifndef UMPPM_FPM_H
+#define UMPPM_FPM_H
+
+#include <stddef.h>
+
+#include "umppm/lsolve.h"
+#include "umppm/mls.h"
+#include "umppm/particles.h"
+#include "umppm/ump.h"
+
+/* Kind of a particle. */
+enum { FPM_FLUID = 0, FPM_WALL = 1, FPM_GHOST = 2 };
+
+typedef struct fpm_params {
+    double l0;          /* particle spacing [m] */
+    double h;           /* support radius h0 of the MLS weights [m] */
+    mls_wfun weight;    /* Eq. 4 or Eq. 5 */
+    double rho, nu;     /* the liquid's density, kinematic viscosity */
+    double g[2];        /* gravity in the plane */
+    double re_s;        /* radius of the free-surface number density / l0 */
+    double beta;        /* free surface: n < beta n0 */
+    double p_tol;       /* BiCGSTAB tolerance */
+    int maxit;          /* BiCGSTAB iteration limit */
+} fpm_params;
+
+typedef struct fpm_stats {
+    lsolve_stats pres;
+    size_t nfluid, nsurface, nunknowns, nneumann; /* fluid, free-surface, PPE unknowns, wet wall points */
+    size_t nlinear;                               /* rows whose MLS fit fell back to the linear basis */
+    double n_min, n_max;                          /* number density / n0 of the fluid particles */
+    double p_min, p_max;                          /* pressure of the fluid particles [Pa] */
+    double cpu[4], wall[4]; /* neighbours + MLS, predictor, pressure, correction */
+} fpm_stats;
+
+typedef struct fpm fpm;
+
+/* The solver around s (borrowed): [0, nwall) wall points with outward
+ * normals (nx, ny) [nwall] (copied), [nwall, nsolid) ghosts, fluid after.
+ * UMP_ERR_INPUT for parameters out of range. */
+ump_status fpm_create(const fpm_params *prm, part_set *s, size_t nwall, size_t nsolid, const double *nx,
+                      const double *ny, fpm **out, ump_err *err);
+void fpm_free(fpm **f);
+
+/* The acceleration of each wall point during the coming step [2 nwall]
+ * (x, y interleaved; zeros unless the caller moves walls): the Du/Dt of
+ * Eq. 25. The caller also sets the wall points' positions and velocities
+ * (u, v of the part_set) for the end of the step before fpm_step. */
+double *fpm_wall_accel(fpm *f);
+/* The walls' normals [nwall] (the caller may rotate them). */
+double *fpm_wall_normal(fpm *f, int comp);
+
+/* One step of length dt (Eqs. 21-25). Fails (UMP_ERR_SINGULAR) when the
+ * pressure solve breaks down, naming it. */
+ump_status fpm_step(fpm *f, double dt, fpm_stats *st, ump_err *err);
+
+/* The largest dt of Eqs. 26-27 (coefficients co, cg) and of the explicit
+ * viscosity, for the current fluid velocities; Eq. 26 takes the speed
+ * max(|U|max, u_wave), u_wave the celerity of gravity waves sqrt(|g| H)
+ * (H the depth of the liquid). */
+double fpm_max_dt(const fpm *f, double co, double cg, double u_wave);
+
+size_t fpm_nsolid(const fpm *f);
+size_t fpm_nwall(const fpm *f);
+/* Fluid particles removed or reordered by the caller (part_compact):
+ * per-particle arrays follow keep[] (solid ones always kept). */
+void fpm_compact(fpm *f, const unsigned char *keep, size_t n_before);
+
+/* Per-particle results of the last step [n]: pressure [Pa], number
+ * density / n0, free-surface flag (1: p = 0). */
+const double *fpm_pressure(const fpm *f);
+const double *fpm_density(const fpm *f);
+const unsigned char *fpm_surface(const fpm *f);
+/* n0 of the free-surface test (the full lattice). */
+double fpm_n0(const fpm *f);
+
+#endif

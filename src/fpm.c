@@ -1,0 +1,518 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * fpm.c -- the finite particle method step (see fpm.h and docs/METHOD.md
+ * section 11).
+ *
+ *   move          fluid x += dt u^n                              Eq. 21
+ *   rows          neighbours within h0 (pnbr.h) at x^{n+1}
+ *   MLS           per fluid particle and wall point: number density,
+ *                 free surface / dry wall, the coefficients of d/dx,
+ *                 d/dy and the Laplacian over its row (mls_full)
+ *   predictor     u~ = u^n + dt (nu lap u^n + g)                 Eq. 21
+ *   pressure      lap p = rho/dt div u~ (fluid inside)           Eq. 24
+ *                 dp/dn = rho n.(g - a_w) + mu n.lap u (wet wall) Eq. 25
+ *                 p = 0 (free surface, dry wall); BiCGSTAB, ILU(0)
+ *   correction    u^{n+1} = u~ - dt/rho grad p                   Eq. 22
+ *
+ * A row's coefficients are stored aligned with its pnbr row (ghost
+ * neighbours and those beyond h0 get 0), the particle's own coefficient
+ * apart (the MLS fit includes the particle itself, at offset 0). Every
+ * sum runs over a row in increasing particle index: the result does not
+ * depend on the number of threads.
+ */
+#include "umppm/fpm.h"
+#include "umppm/mps.h"
+#include "umppm/pnbr.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/time.h>
+#include <time.h>
+
+#define FPM_SKIN 0.5 /* Verlet skin of the rows, in l0 */
+#define FPM_MAXROW 512
+
+struct fpm {
+    fpm_params P;
+    part_set *s;
+    size_t nw, ns;
+    double n0;               /* number density of the full lattice, radius re_s */
+    double *wnx, *wny;       /* [nw] outward normals */
+    double *wacc;            /* [2 nw] wall accelerations */
+    size_t cap;
+    unsigned char *kind;     /* [cap] */
+    double *p, *nd, *ut, *vt;
+    double *sx, *sy, *sl;    /* the particle's own coefficient in its fit */
+    unsigned char *surf;     /* fluid: free surface; wall: dry (p = 0) */
+    unsigned char *quad;     /* the fit used the quadratic basis */
+    long *unk;               /* PPE unknown of a particle, -1 if none */
+    size_t *unk_part;
+    pnbr nb;
+    double *cx, *cy, *cl;    /* [rcap] per row entry */
+    size_t rcap;
+    /* the pressure system, rows of unknowns */
+    ump_idx *rp, *ci;
+    double *av, *b, *x;
+    size_t mrows, mnz;
+    lsolve_mat A;
+    size_t acap;
+    lsolve_krylov *kry;
+    size_t kry_n;
+};
+
+static double cpu_seconds(void) { return (double)clock() / CLOCKS_PER_SEC; }
+static double wall_seconds(void)
+{
+    struct timeval tv;
+    gettimeofday(&tv, NULL);
+    return (double)tv.tv_sec + 1e-6 * (double)tv.tv_usec;
+}
+
+#define GROW_TO(ptr, n)                                                                                 \
+    do {                                                                                                \
+        void *q_ = ump_realloc_array((ptr), (n), sizeof *(ptr));                                        \
+        if (!q_)                                                                                        \
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "FPM: out of memory for %zu particles", (size_t)(n));   \
+        (ptr) = q_;                                                                                     \
+    } while (0)
+
+static ump_status reserve(fpm *f, ump_err *err)
+{
+    size_t n = f->s->n;
+    if (n <= f->cap && f->p)
+        return UMP_OK;
+    size_t nc = n + n / 2 + 16, old = f->cap;
+    GROW_TO(f->kind, nc);
+    GROW_TO(f->p, nc);
+    GROW_TO(f->nd, nc);
+    GROW_TO(f->ut, nc);
+    GROW_TO(f->vt, nc);
+    GROW_TO(f->sx, nc);
+    GROW_TO(f->sy, nc);
+    GROW_TO(f->sl, nc);
+    GROW_TO(f->surf, nc);
+    GROW_TO(f->quad, nc);
+    GROW_TO(f->unk, nc);
+    GROW_TO(f->unk_part, nc);
+    for (size_t i = old; i < nc; i++) {
+        f->kind[i] = FPM_FLUID;
+        f->p[i] = f->nd[i] = 0;
+        f->surf[i] = 0;
+        f->quad[i] = 0;
+    }
+    f->cap = nc;
+    return UMP_OK;
+}
+
+ump_status fpm_create(const fpm_params *prm, part_set *s, size_t nwall, size_t nsolid, const double *nx,
+                      const double *ny, fpm **out, ump_err *err)
+{
+    *out = NULL;
+    UMP_CHECK(prm->l0 > 0 && prm->h >= 2 * prm->l0 && prm->rho > 0 && prm->nu >= 0 && prm->re_s > 1 &&
+                  prm->beta > 0 && prm->beta < 1 && prm->p_tol > 0 && prm->maxit > 0 && nwall <= nsolid &&
+                  nsolid <= s->n,
+              err, UMP_ERR_INPUT, "FPM: parameters out of range (l0 %g, h0 %g, rho %g, nu %g, r_s %g, beta %g)",
+              prm->l0, prm->h, prm->rho, prm->nu, prm->re_s, prm->beta);
+    UMP_CHECK(prm->weight == MLS_WFUN_EXP || prm->weight == MLS_WFUN_SPLINE, err, UMP_ERR_INPUT,
+              "FPM: unknown weight function %d", (int)prm->weight);
+    fpm *f = calloc(1, sizeof *f);
+    UMP_CHECK(f, err, UMP_ERR_NOMEM, "FPM: out of memory");
+    f->P = *prm;
+    f->s = s;
+    f->nw = nwall;
+    f->ns = nsolid;
+    double sr;
+    mps_lattice_sums(prm->re_s, &f->n0, &sr);
+    ump_status rc = reserve(f, err);
+    if (rc == UMP_OK) {
+        f->wnx = ump_alloc_array(nwall + 1, sizeof *f->wnx);
+        f->wny = ump_alloc_array(nwall + 1, sizeof *f->wny);
+        f->wacc = ump_alloc_array(2 * nwall + 2, sizeof *f->wacc);
+        if (!f->wnx || !f->wny || !f->wacc)
+            rc = UMP_FAIL(err, UMP_ERR_NOMEM, "FPM: out of memory");
+    }
+    if (rc != UMP_OK) {
+        fpm_free(&f);
+        return rc;
+    }
+    for (size_t i = 0; i < nwall; i++) {
+        f->wnx[i] = nx[i];
+        f->wny[i] = ny[i];
+        f->wacc[2 * i] = f->wacc[2 * i + 1] = 0;
+    }
+    for (size_t i = 0; i < s->n; i++)
+        f->kind[i] = i < nwall ? FPM_WALL : i < nsolid ? FPM_GHOST : FPM_FLUID;
+    *out = f;
+    return UMP_OK;
+}
+
+void fpm_free(fpm **pf)
+{
+    fpm *f = *pf;
+    if (!f)
+        return;
+    free(f->wnx);
+    free(f->wny);
+    free(f->wacc);
+    free(f->kind);
+    free(f->p);
+    free(f->nd);
+    free(f->ut);
+    free(f->vt);
+    free(f->sx);
+    free(f->sy);
+    free(f->sl);
+    free(f->surf);
+    free(f->quad);
+    free(f->unk);
+    free(f->unk_part);
+    pnbr_free(&f->nb);
+    free(f->cx);
+    free(f->cy);
+    free(f->cl);
+    free(f->rp);
+    free(f->ci);
+    free(f->av);
+    free(f->b);
+    free(f->x);
+    free(f->A.Ap);
+    free(f->A.Ai);
+    free(f->A.Ax);
+    lsolve_krylov_free(&f->kry);
+    free(f);
+    *pf = NULL;
+}
+
+double *fpm_wall_accel(fpm *f) { return f->wacc; }
+double *fpm_wall_normal(fpm *f, int comp) { return comp ? f->wny : f->wnx; }
+size_t fpm_nsolid(const fpm *f) { return f->ns; }
+size_t fpm_nwall(const fpm *f) { return f->nw; }
+const double *fpm_pressure(const fpm *f) { return f->p; }
+const double *fpm_density(const fpm *f) { return f->nd; }
+const unsigned char *fpm_surface(const fpm *f) { return f->surf; }
+double fpm_n0(const fpm *f) { return f->n0; }
+
+void fpm_compact(fpm *f, const unsigned char *keep, size_t n_before)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < n_before; i++) {
+        if (!keep[i])
+            continue;
+        f->kind[k] = f->kind[i];
+        f->p[k] = f->p[i];
+        f->nd[k] = f->nd[i];
+        f->surf[k] = f->surf[i];
+        k++;
+    }
+}
+
+double fpm_max_dt(const fpm *f, double co, double cg, double u_wave)
+{
+    const part_set *s = f->s;
+    double umax = 0;
+    for (size_t i = f->ns; i < s->n; i++)
+        umax = fmax(umax, hypot(s->u[i], s->v[i]));
+    for (size_t i = 0; i < f->nw; i++) /* a moving wall sets the pace too */
+        umax = fmax(umax, hypot(s->u[i], s->v[i]));
+    /* Eq. 26 on max(|U|max, u_wave): the free surface is explicit, and its
+     * gravity waves (celerity sqrt(g H)) must be resolved even at rest --
+     * with Eqs. 26-27 alone the tank at rest (depth 0.3 m, l0 5 mm, dt of
+     * Eq. 27 0.0095 s: 3 particle spacings per step at sqrt(g H)) diverged
+     * from its corners within 0.2 s (measured) */
+    umax = fmax(umax, u_wave);
+    double h = f->P.h, g = hypot(f->P.g[0], f->P.g[1]), dt = HUGE_VAL;
+    if (umax > 0)
+        dt = co * h / umax; /* Eq. 26 */
+    if (g > 0)
+        dt = fmin(dt, cg * sqrt(h / g)); /* Eq. 27 */
+    if (f->P.nu > 0)
+        dt = fmin(dt, 0.1 * f->P.l0 * f->P.l0 / f->P.nu); /* explicit viscosity (the paper is silent) */
+    return dt;
+}
+
+/* ---- MLS rows ------------------------------------------------------------------ */
+
+/* Number density, free surface and the MLS coefficients of every fluid
+ * particle and wall point (Eqs. 1-18 via mls_full). Two passes: the
+ * number densities decide which wall points are wet; the fits then take
+ * the particle itself, its fluid neighbours and its wet wall neighbours.
+ * A dry wall point (above the liquid) is no sample: it is not the gas at
+ * p = 0 but a wall, and taking it as p = 0 put a pressure gradient into
+ * the corner where the free surface meets a wall (measured: the tank at
+ * rest diverged from those corners) -- next to it a fit is one-sided, as
+ * at the free surface. */
+static ump_status mls_rows(fpm *f, fpm_stats *st, ump_err *err)
+{
+    const part_set *s = f->s;
+    size_t n = s->n;
+    const pnbr *R = &f->nb;
+    size_t nz = R->off[n];
+    if (nz > f->rcap) {
+        size_t nc = nz + nz / 2 + 64;
+        GROW_TO(f->cx, nc);
+        GROW_TO(f->cy, nc);
+        GROW_TO(f->cl, nc);
+        f->rcap = nc;
+    }
+    const double rs = f->P.re_s * f->P.l0, h = f->P.h, thr = f->P.beta;
+    const mls_wfun wf = f->P.weight;
+    size_t nlin = 0;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        if (f->kind[i] == FPM_GHOST)
+            continue;
+        /* number density of fluid and ghost particles (the MPS kernel) */
+        double nd = 0;
+        for (size_t q = R->off[i]; q < R->off[i + 1]; q++)
+            if (f->kind[R->j[q]] != FPM_WALL)
+                nd += mps_weight(R->r[q], rs);
+        f->nd[i] = nd / f->n0;
+        f->surf[i] = f->nd[i] < thr;
+    }
+#pragma omp parallel reduction(+ : nlin)
+    {
+        double dx[FPM_MAXROW + 1], dy[FPM_MAXROW + 1], c1[FPM_MAXROW + 1], c2[FPM_MAXROW + 1],
+            c3[FPM_MAXROW + 1], c5[FPM_MAXROW + 1];
+        int pos[FPM_MAXROW + 1];
+        double *c[MLS_NOUT] = {NULL, c1, c2, c3, NULL, c5};
+#pragma omp for schedule(dynamic, 64)
+        for (size_t i = 0; i < n; i++) {
+            if (f->kind[i] == FPM_GHOST)
+                continue;
+            for (size_t q = R->off[i]; q < R->off[i + 1]; q++)
+                f->cx[q] = f->cy[q] = f->cl[q] = 0;
+            f->sx[i] = f->sy[i] = f->sl[i] = 0;
+            f->quad[i] = 0;
+            if (f->kind[i] == FPM_WALL && f->surf[i])
+                continue; /* dry: p = 0, no row */
+            int k = 0;
+            dx[k] = dy[k] = 0; /* the particle itself */
+            pos[k++] = -1;
+            for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
+                size_t j = R->j[q];
+                int take = f->kind[j] == FPM_FLUID || (f->kind[j] == FPM_WALL && !f->surf[j]);
+                if (take && R->r[q] < h) {
+                    dx[k] = R->dx[q];
+                    dy[k] = R->dy[q];
+                    pos[k++] = (int)(q - R->off[i]);
+                }
+            }
+            mls_basis b = mls_full(dx, dy, k, h, wf, c, NULL);
+            f->quad[i] = b == MLS_QUADRATIC;
+            nlin += b != MLS_QUADRATIC;
+            if (b != MLS_QUADRATIC) /* too few neighbours: a free-surface particle (a wet wall point: dry) */
+                f->surf[i] = 1;
+            f->sx[i] = c1[0];
+            f->sy[i] = c2[0];
+            f->sl[i] = c3[0] + c5[0];
+            for (int t = 1; t < k; t++) {
+                size_t q = R->off[i] + (size_t)pos[t];
+                f->cx[q] = c1[t];
+                f->cy[q] = c2[t];
+                f->cl[q] = c3[t] + c5[t];
+            }
+        }
+    }
+    st->nlinear = nlin;
+    return UMP_OK;
+}
+
+/* sum over the row of i of coef * v, plus the particle's own term */
+static inline double row_sum(const fpm *f, size_t i, const double *coef, double self, const double *v)
+{
+    const pnbr *R = &f->nb;
+    double t = self * v[i];
+    for (size_t q = R->off[i]; q < R->off[i + 1]; q++)
+        t += coef[q] * v[R->j[q]];
+    return t;
+}
+
+/* ---- the pressure equation -------------------------------------------------- */
+
+static ump_status matrix_reserve(fpm *f, size_t nrows, size_t nz, ump_err *err)
+{
+    if (nrows + 1 > f->mrows) {
+        size_t nc = nrows + 1 + nrows / 2;
+        GROW_TO(f->rp, nc);
+        GROW_TO(f->b, nc);
+        GROW_TO(f->x, nc);
+        f->mrows = nc;
+    }
+    if (nz > f->mnz) {
+        size_t nc = nz + nz / 2 + 64;
+        GROW_TO(f->ci, nc);
+        GROW_TO(f->av, nc);
+        f->mnz = nc;
+    }
+    return UMP_OK;
+}
+
+static ump_status pressure(fpm *f, double dt, fpm_stats *st, ump_err *err)
+{
+    part_set *s = f->s;
+    size_t n = s->n;
+    const pnbr *R = &f->nb;
+    const double rho = f->P.rho, mu = f->P.rho * f->P.nu, l0 = f->P.l0;
+    /* unknowns: fluid particles inside the liquid, wet wall points */
+    size_t nu = 0, nneu = 0;
+    for (size_t i = 0; i < n; i++) {
+        f->unk[i] = -1;
+        if (f->kind[i] == FPM_GHOST || f->surf[i])
+            continue;
+        f->unk[i] = (long)nu;
+        f->unk_part[nu++] = i;
+        nneu += f->kind[i] == FPM_WALL;
+    }
+    st->nunknowns = nu;
+    st->nneumann = nneu;
+    for (size_t i = 0; i < n; i++)
+        if (f->unk[i] < 0)
+            f->p[i] = 0;
+    if (nu == 0)
+        return UMP_OK;
+    /* row lengths: the unknown neighbours with a coefficient, and itself */
+    UMP_CALL(matrix_reserve(f, nu, 0, err));
+    f->rp[0] = 0;
+    for (size_t r = 0; r < nu; r++) {
+        size_t i = f->unk_part[r], k = 1;
+        for (size_t q = R->off[i]; q < R->off[i + 1]; q++)
+            k += f->unk[R->j[q]] >= 0 && (f->cx[q] != 0 || f->cy[q] != 0 || f->cl[q] != 0);
+        f->rp[r + 1] = f->rp[r] + (ump_idx)k;
+    }
+    UMP_CALL(matrix_reserve(f, nu, (size_t)f->rp[nu], err));
+#pragma omp parallel for schedule(dynamic, 64)
+    for (size_t r = 0; r < nu; r++) {
+        size_t i = f->unk_part[r];
+        ump_idx k = f->rp[r];
+        if (f->kind[i] == FPM_FLUID) {
+            /* Eq. 24: lap p = rho/dt div u~ */
+            f->ci[k] = (ump_idx)r;
+            f->av[k++] = f->sl[i];
+            for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
+                long u = f->unk[R->j[q]];
+                if (u >= 0 && (f->cx[q] != 0 || f->cy[q] != 0 || f->cl[q] != 0)) {
+                    f->ci[k] = (ump_idx)u;
+                    f->av[k++] = f->cl[q];
+                }
+            }
+            double div = row_sum(f, i, f->cx, f->sx[i], f->ut) + row_sum(f, i, f->cy, f->sy[i], f->vt);
+            f->b[r] = rho / dt * div;
+        } else {
+            /* Eq. 25 on a wall point, scaled by -l0:
+             * dp/dn = rho n.(g - a_w) + mu n.lap u */
+            size_t w = i;
+            double nx = f->wnx[w], ny = f->wny[w], sc = -l0;
+            f->ci[k] = (ump_idx)r;
+            f->av[k++] = sc * (nx * f->sx[i] + ny * f->sy[i]);
+            for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
+                long u = f->unk[R->j[q]];
+                if (u >= 0 && (f->cx[q] != 0 || f->cy[q] != 0 || f->cl[q] != 0)) {
+                    f->ci[k] = (ump_idx)u;
+                    f->av[k++] = sc * (nx * f->cx[q] + ny * f->cy[q]);
+                }
+            }
+            double lu = row_sum(f, i, f->cl, f->sl[i], s->u), lv = row_sum(f, i, f->cl, f->sl[i], s->v);
+            double rhs = rho * (nx * (f->P.g[0] - f->wacc[2 * w]) + ny * (f->P.g[1] - f->wacc[2 * w + 1])) +
+                         mu * (nx * lu + ny * lv);
+            f->b[r] = sc * rhs;
+        }
+    }
+    for (size_t r = 0; r < nu; r++)
+        f->x[r] = f->p[f->unk_part[r]]; /* warm start: the last pressure */
+    UMP_CALL(lsolve_mat_from_csr(&f->A, &f->acap, (ump_idx)nu, f->rp, f->ci, f->av, err));
+    if (!f->kry || f->kry_n < nu) {
+        lsolve_krylov_free(&f->kry);
+        size_t kn = nu + nu / 2 + 16;
+        UMP_CALL(lsolve_krylov_create((ump_idx)kn, &f->kry, err));
+        f->kry_n = kn;
+    }
+    ump_status rc = lsolve_bicgstab(f->kry, &f->A, LSOLVE_PC_ILU0, f->b, f->x, f->P.p_tol, f->P.maxit, &st->pres,
+                                    err);
+    if (rc != UMP_OK)
+        return rc; /* lsolve names it */
+    if (st->pres.converged < 0)
+        return UMP_FAIL(err, UMP_ERR_SINGULAR, "FPM: BiCGSTAB broke down on the pressure equation (%zu unknowns, "
+                        "residual %g after %d iterations)", nu, st->pres.res, st->pres.iterations);
+    for (size_t r = 0; r < nu; r++)
+        f->p[f->unk_part[r]] = f->x[r];
+    return UMP_OK;
+}
+
+/* ---- the step ------------------------------------------------------------------ */
+
+ump_status fpm_step(fpm *f, double dt, fpm_stats *st, ump_err *err)
+{
+    memset(st, 0, sizeof *st);
+    UMP_CHECK(dt > 0 && isfinite(dt), err, UMP_ERR_INPUT, "FPM: time step %g", dt);
+    UMP_CALL(reserve(f, err));
+    part_set *s = f->s;
+    size_t n = s->n, ns = f->ns;
+    st->nfluid = n - ns;
+    double c0 = cpu_seconds(), w0 = wall_seconds(), c1, w1;
+    /* 1. move (Eq. 21): positions change only here */
+    for (size_t i = ns; i < n; i++) {
+        s->x[i] += dt * s->u[i];
+        s->y[i] += dt * s->v[i];
+    }
+    /* 2. rows and MLS coefficients at x^{n+1} */
+    static const int need[3] = {1, 1, 0};
+    UMP_CALL(pnbr_update(&f->nb, s, f->kind, need, f->P.h, FPM_SKIN * f->P.l0, 0, "FPM", err));
+    UMP_CALL(mls_rows(f, st, err));
+    c1 = cpu_seconds(), w1 = wall_seconds();
+    st->cpu[0] += c1 - c0, st->wall[0] += w1 - w0;
+    /* 3. predictor (Eq. 21): u~ = u^n + dt (nu lap u^n + g). A wall point
+     * gets u~ = u_w + dt (g - a_w): u^{n+1} = u~ - dt/rho grad p there too,
+     * so this is the u~ whose normal part agrees with the Neumann condition
+     * of Eq. 25 (its inviscid part); with u~ = u_w instead, the divergence
+     * next to a wall sees a jump of g dt over l0/2, and the hydrostatic
+     * pressure came out 2.1 times rho g h (measured, the tank at rest) */
+    const double nu = f->P.nu;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        if (f->kind[i] == FPM_WALL) {
+            f->ut[i] = s->u[i] + dt * (f->P.g[0] - f->wacc[2 * i]);
+            f->vt[i] = s->v[i] + dt * (f->P.g[1] - f->wacc[2 * i + 1]);
+            continue;
+        }
+        if (f->kind[i] != FPM_FLUID) {
+            f->ut[i] = f->vt[i] = 0;
+            continue;
+        }
+        double lu = 0, lv = 0;
+        if (nu > 0 && f->quad[i]) {
+            lu = row_sum(f, i, f->cl, f->sl[i], s->u);
+            lv = row_sum(f, i, f->cl, f->sl[i], s->v);
+        }
+        f->ut[i] = s->u[i] + dt * (nu * lu + f->P.g[0]);
+        f->vt[i] = s->v[i] + dt * (nu * lv + f->P.g[1]);
+    }
+    c0 = cpu_seconds(), w0 = wall_seconds();
+    st->cpu[1] += c0 - c1, st->wall[1] += w0 - w1;
+    /* 4. pressure (Eqs. 24-25) */
+    UMP_CALL(pressure(f, dt, st, err));
+    c1 = cpu_seconds(), w1 = wall_seconds();
+    st->cpu[2] += c1 - c0, st->wall[2] += w1 - w0;
+    /* 5. correction (Eq. 22) */
+    const double k = dt / f->P.rho;
+    double pmin = HUGE_VAL, pmax = -HUGE_VAL, nmin = HUGE_VAL, nmax = -HUGE_VAL;
+    size_t nsurf = 0;
+#pragma omp parallel for schedule(static) reduction(min : pmin, nmin) reduction(max : pmax, nmax) \
+    reduction(+ : nsurf)
+    for (size_t i = ns; i < n; i++) {
+        double gx = row_sum(f, i, f->cx, f->sx[i], f->p), gy = row_sum(f, i, f->cy, f->sy[i], f->p);
+        s->u[i] = f->ut[i] - k * gx;
+        s->v[i] = f->vt[i] - k * gy;
+        pmin = fmin(pmin, f->p[i]);
+        pmax = fmax(pmax, f->p[i]);
+        nmin = fmin(nmin, f->nd[i]);
+        nmax = fmax(nmax, f->nd[i]);
+        nsurf += f->surf[i];
+    }
+    st->nsurface = nsurf;
+    st->p_min = n > ns ? pmin : 0;
+    st->p_max = n > ns ? pmax : 0;
+    st->n_min = n > ns ? nmin : 0;
+    st->n_max = n > ns ? nmax : 0;
+    st->cpu[3] += cpu_seconds() - c1, st->wall[3] += wall_seconds() - w1;
+    return UMP_OK;
+}
