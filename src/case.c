@@ -921,6 +921,16 @@ static const case_option meshless_options[] = {
      "FPM: radius / l0 of the number density of the free-surface test", ML_FIELD(re_s)},
     {"surfaceBeta", CASE_OPT_SCALAR, "0.95", 0.95, NULL, NULL, UM_OPEN01,
      "FPM: free surface where the number density < surfaceBeta n0", ML_FIELD(beta_s)},
+    {"surfaceShift", CASE_OPT_SCALAR, "0.2", 0.2, NULL, NULL, UM_GT(0),
+     "FPM: ... or where the neighbours' centroid is off by > surfaceShift l0", ML_FIELD(shift_s)},
+    {"wallDistance", CASE_OPT_SCALAR, "0.25", 0.25, NULL, NULL, ML_CLOSED(0, 0.5),
+     "FPM: fluid particles closer to a wall go back to this distance / l0; 0: off", ML_FIELD(d_wall)},
+    {"mergeDistance", CASE_OPT_SCALAR, "0.5", 0.5, NULL, NULL, ML_CLOSED(0, 0.9),
+     "FPM: pairs closer than this / l0 are merged; 0: off", ML_FIELD(d_min)},
+    {"holeRadius", CASE_OPT_SCALAR, "0.9", 0.9, NULL, NULL, UM_GE(0),
+     "FPM: a particle is inserted in Voronoi holes of radius > this / l0; 0: off", ML_FIELD(r_hole)},
+    {"manageInterval", CASE_OPT_LABEL, "1", 1, NULL, NULL, UM_GE(1),
+     "FPM: steps between particle managements (merge, insert)", ML_FIELD(manage_interval)},
 };
 
 static const case_opt_table meshless_table = {"meshless", meshless_options,

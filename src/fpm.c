@@ -22,6 +22,7 @@
 #include "umppm/fpm.h"
 #include "umppm/mps.h"
 #include "umppm/pnbr.h"
+#include "umppm/vor.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -58,6 +59,13 @@ struct fpm {
     size_t acap;
     lsolve_krylov *kry;
     size_t kry_n;
+    /* particle management */
+    unsigned char *keep;        /* [kcap] */
+    size_t kcap;
+    unsigned char *mask;        /* [mcap] */
+    size_t mcap;
+    double *hx, *hy;            /* [mcap] the coordinates handed to qhull */
+    size_t *hmap;               /* [mcap] their particles */
 };
 
 static double cpu_seconds(void) { return (double)clock() / CLOCKS_PER_SEC; }
@@ -179,6 +187,11 @@ void fpm_free(fpm **pf)
     free(f->A.Ai);
     free(f->A.Ax);
     lsolve_krylov_free(&f->kry);
+    free(f->keep);
+    free(f->mask);
+    free(f->hx);
+    free(f->hy);
+    free(f->hmap);
     free(f);
     *pf = NULL;
 }
@@ -233,7 +246,12 @@ double fpm_max_dt(const fpm *f, double co, double cg, double u_wave)
 /* ---- MLS rows ------------------------------------------------------------------ */
 
 /* Number density, free surface and the MLS coefficients of every fluid
- * particle and wall point (Eqs. 1-18 via mls_full). Two passes: the
+ * particle and wall point (Eqs. 1-18 via mls_full). The free surface: a
+ * number density below beta n0, or the weighted centroid of the
+ * neighbours off by more than shift l0 -- the second finds the particles
+ * at the toe of a front running along a wall, whose density the ghosts
+ * keep near n0 (measured: without it the dam-break toe was solved as
+ * inside liquid with nothing ahead of it, and diverged). Two passes: the
  * number densities decide which wall points are wet; the fits then take
  * the particle itself, its fluid neighbours and its wet wall neighbours.
  * A dry wall point (above the liquid) is no sample: it is not the gas at
@@ -254,20 +272,25 @@ static ump_status mls_rows(fpm *f, fpm_stats *st, ump_err *err)
         GROW_TO(f->cl, nc);
         f->rcap = nc;
     }
-    const double rs = f->P.re_s * f->P.l0, h = f->P.h, thr = f->P.beta;
+    const double rs = f->P.re_s * f->P.l0, h = f->P.h, thr = f->P.beta, shift = f->P.shift * f->P.l0;
     const mls_wfun wf = f->P.weight;
     size_t nlin = 0;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         if (f->kind[i] == FPM_GHOST)
             continue;
-        /* number density of fluid and ghost particles (the MPS kernel) */
-        double nd = 0;
+        /* number density of fluid and ghost particles (the MPS kernel), and
+         * the offset of their weighted centroid */
+        double nd = 0, mx = 0, my = 0;
         for (size_t q = R->off[i]; q < R->off[i + 1]; q++)
-            if (f->kind[R->j[q]] != FPM_WALL)
-                nd += mps_weight(R->r[q], rs);
+            if (f->kind[R->j[q]] != FPM_WALL) {
+                double w = mps_weight(R->r[q], rs);
+                nd += w;
+                mx += w * R->dx[q];
+                my += w * R->dy[q];
+            }
         f->nd[i] = nd / f->n0;
-        f->surf[i] = f->nd[i] < thr;
+        f->surf[i] = f->nd[i] < thr || (nd > 0 && hypot(mx, my) > shift * nd);
     }
 #pragma omp parallel reduction(+ : nlin)
     {
@@ -353,6 +376,9 @@ static ump_status pressure(fpm *f, double dt, fpm_stats *st, ump_err *err)
     size_t n = s->n;
     const pnbr *R = &f->nb;
     const double rho = f->P.rho, mu = f->P.rho * f->P.nu, l0 = f->P.l0;
+    /* the density term as in MPS's Eq. 18: lap p = -rho/dt^2 (n - n0)/n0,
+     * with the MPS Laplacian's 2d/lambda ~ 4/l0^2 ... its scale: */
+    const double gscale = 1.0;
     /* unknowns: fluid particles inside the liquid, wet wall points */
     size_t nu = 0, nneu = 0;
     for (size_t i = 0; i < n; i++) {
@@ -396,7 +422,10 @@ static ump_status pressure(fpm *f, double dt, fpm_stats *st, ump_err *err)
                 }
             }
             double div = row_sum(f, i, f->cx, f->sx[i], f->ut) + row_sum(f, i, f->cy, f->sy[i], f->vt);
-            f->b[r] = rho / dt * div;
+            /* + the density deviation (a departure, docs/METHOD.md 11): with
+             * div u~ alone the particles drift into clusters (n/n0 1.4 in the
+             * dam break) that the MLS operators turn into pressure noise */
+            f->b[r] = rho / dt * div - f->P.gamma * rho / (dt * dt) * (f->nd[i] - 1) * gscale;
         } else {
             /* Eq. 25 on a wall point, scaled by -l0:
              * dp/dn = rho n.(g - a_w) + mu n.lap u */
@@ -514,5 +543,197 @@ ump_status fpm_step(fpm *f, double dt, fpm_stats *st, ump_err *err)
     st->n_min = n > ns ? nmin : 0;
     st->n_max = n > ns ? nmax : 0;
     st->cpu[3] += cpu_seconds() - c1, st->wall[3] += wall_seconds() - w1;
+    return UMP_OK;
+}
+
+/* ---- particle management (Section 4.1) ----------------------------------------- */
+
+/* MLS value (c0 of Eq. 1) at (x, y) of v over particle c0's row and c0
+ * itself (fluid and wet wall points within h). */
+static double interp_at(const fpm *f, size_t c0, double x, double y, const double *v)
+{
+    const part_set *s = f->s;
+    const pnbr *R = &f->nb;
+    double dx[FPM_MAXROW + 1], dy[FPM_MAXROW + 1], c[FPM_MAXROW + 1], val[FPM_MAXROW + 1];
+    double *cc[MLS_NOUT] = {c, NULL, NULL, NULL, NULL, NULL};
+    int k = 0;
+    dx[k] = s->x[c0] - x;
+    dy[k] = s->y[c0] - y;
+    val[k++] = v[c0];
+    for (size_t q = R->off[c0]; q < R->off[c0 + 1] && k <= FPM_MAXROW; q++) {
+        size_t j = R->j[q];
+        if (!(f->kind[j] == FPM_FLUID || (f->kind[j] == FPM_WALL && !f->surf[j])))
+            continue;
+        dx[k] = s->x[j] - x;
+        dy[k] = s->y[j] - y;
+        val[k++] = v[j];
+    }
+    mls_full(dx, dy, k, f->P.h, f->P.weight, cc, NULL);
+    double t = 0;
+    for (int q = 0; q < k; q++)
+        t += c[q] * val[q];
+    return t;
+}
+
+ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char **keep, fpm_manage_stats *ms,
+                      ump_err *err)
+{
+    memset(ms, 0, sizeof *ms);
+    part_set *s = f->s;
+    size_t n = s->n, ns = f->ns, nw = f->nw;
+    const pnbr *R = &f->nb;
+    const double l0 = f->P.l0;
+    if (n + 1 > f->kcap) {
+        size_t nc = 2 * n + 16;
+        GROW_TO(f->keep, nc);
+        f->kcap = nc;
+    }
+    if (n + 1 > f->mcap) {
+        size_t nc = 2 * n + 16;
+        GROW_TO(f->mask, nc);
+        GROW_TO(f->hx, nc);
+        GROW_TO(f->hy, nc);
+        GROW_TO(f->hmap, nc);
+        f->mcap = nc;
+    }
+    memset(f->keep, 1, n);
+    *keep = f->keep;
+    /* the rows are those of the step (positions at x^{n+1}); the caller
+     * may have put some particles back (stopped at a wall): offsets are
+     * taken from the positions, not from the rows */
+    if (mg->d_wall > 0) {
+        const double dw = mg->d_wall * l0;
+        size_t nsh = 0;
+#pragma omp parallel for schedule(static) reduction(+ : nsh)
+        for (size_t i = ns; i < n; i++) {
+            double best = HUGE_VAL;
+            size_t wb = 0;
+            for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
+                size_t w = R->j[q];
+                if (w >= nw)
+                    continue;
+                double rx = s->x[i] - s->x[w], ry = s->y[i] - s->y[w];
+                double dn = -(rx * f->wnx[w] + ry * f->wny[w]);        /* into the liquid */
+                double dt = fabs(rx * f->wny[w] - ry * f->wnx[w]);     /* along the wall */
+                if (dt <= 0.5 * l0 * 1.0001 && dn < best) {
+                    best = dn;
+                    wb = w;
+                }
+            }
+            if (best < dw) {
+                double nx = f->wnx[wb], ny = f->wny[wb], mv = dw - best;
+                s->x[i] -= mv * nx;
+                s->y[i] -= mv * ny;
+                double un = (s->u[i] - s->u[wb]) * nx + (s->v[i] - s->v[wb]) * ny;
+                if (un > 0) {
+                    s->u[i] -= un * nx;
+                    s->v[i] -= un * ny;
+                }
+                nsh++;
+            }
+        }
+        ms->shifted = nsh;
+    }
+    if (mg->d_min > 0) {
+        /* pairs in increasing index, each particle at most once per call:
+         * serial and in a fixed order, so the result is deterministic */
+        const double d2 = mg->d_min * l0 * mg->d_min * l0;
+        for (size_t i = ns; i < n; i++) {
+            if (!f->keep[i])
+                continue;
+            for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
+                size_t j = R->j[q];
+                if (j <= i || j < ns || !f->keep[j])
+                    continue;
+                double dx = s->x[j] - s->x[i], dy = s->y[j] - s->y[i];
+                if (dx * dx + dy * dy >= d2)
+                    continue;
+                s->x[i] += 0.5 * dx;
+                s->y[i] += 0.5 * dy;
+                s->u[i] = 0.5 * (s->u[i] + s->u[j]);
+                s->v[i] = 0.5 * (s->v[i] + s->v[j]);
+                f->p[i] = 0.5 * (f->p[i] + f->p[j]);
+                f->keep[j] = 0;
+                ms->merged++;
+                break;
+            }
+        }
+    }
+    if (mg->r_hole > 0) {
+        /* the liquid's points: inside fluid particles and wet wall points */
+        size_t m = 0;
+        for (size_t i = 0; i < n; i++) {
+            int in = f->keep[i] && ((f->kind[i] == FPM_FLUID && !f->surf[i] && f->quad[i]) ||
+                                    (f->kind[i] == FPM_WALL && !f->surf[i]));
+            if (f->kind[i] == FPM_GHOST)
+                continue;
+            f->hx[m] = s->x[i];
+            f->hy[m] = s->y[i];
+            f->hmap[m] = i;
+            f->mask[m] = (unsigned char)in;
+            m++;
+        }
+        vor_hole *H = NULL;
+        size_t nh = 0;
+        UMP_CALL(vor_holes(f->hx, f->hy, m, f->mask, mg->r_hole * l0, &H, &nh, err));
+        for (size_t k = 0; k < m; k++)
+            f->mask[k] = 0; /* now: vertex used by an insertion of this call */
+        ump_status rc = UMP_OK;
+        for (size_t h = 0; h < nh && rc == UMP_OK; h++) {
+            const vor_hole *o = &H[h];
+            if (f->mask[o->v[0]] || f->mask[o->v[1]] || f->mask[o->v[2]])
+                continue;
+            /* inside its triangle (barycentric >= -0.05): not across a wall */
+            double ax = f->hx[o->v[0]], ay = f->hy[o->v[0]], bx = f->hx[o->v[1]], by = f->hy[o->v[1]];
+            double cx = f->hx[o->v[2]], cy = f->hy[o->v[2]];
+            double det = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
+            if (det == 0)
+                continue;
+            double l1 = ((bx - o->x) * (cy - o->y) - (cx - o->x) * (by - o->y)) / det;
+            double l2 = ((cx - o->x) * (ay - o->y) - (ax - o->x) * (cy - o->y)) / det;
+            double l3 = 1 - l1 - l2;
+            if (l1 < -0.05 || l2 < -0.05 || l3 < -0.05)
+                continue;
+            /* interpolate from a fluid vertex's row */
+            size_t c0 = f->hmap[o->v[0]];
+            for (int t = 0; t < 3; t++)
+                if (f->kind[f->hmap[o->v[t]]] == FPM_FLUID) {
+                    c0 = f->hmap[o->v[t]];
+                    break;
+                }
+            if (f->kind[c0] != FPM_FLUID)
+                continue; /* three wall points: not a hole in the liquid */
+            double u = interp_at(f, c0, o->x, o->y, s->u), v = interp_at(f, c0, o->x, o->y, s->v);
+            double pr = interp_at(f, c0, o->x, o->y, f->p);
+            size_t idx;
+            rc = part_add(s, o->x, o->y, u, v, 0, s->cell[c0], &idx, err);
+            if (rc != UMP_OK)
+                break;
+            rc = reserve(f, err);
+            if (rc != UMP_OK)
+                break;
+            if (idx + 1 > f->kcap) {
+                size_t nc = 2 * idx + 16;
+                void *q1 = ump_realloc_array(f->keep, nc, 1);
+                if (!q1) {
+                    rc = UMP_FAIL(err, UMP_ERR_NOMEM, "FPM: out of memory");
+                    break;
+                }
+                f->keep = q1;
+                f->kcap = nc;
+                *keep = f->keep;
+            }
+            f->keep[idx] = 1;
+            f->kind[idx] = FPM_FLUID;
+            f->p[idx] = pr;
+            f->nd[idx] = 1;
+            f->surf[idx] = 0;
+            f->quad[idx] = 0;
+            f->mask[o->v[0]] = f->mask[o->v[1]] = f->mask[o->v[2]] = 1;
+            ms->inserted++;
+        }
+        free(H);
+        UMP_CALL(rc);
+    }
     return UMP_OK;
 }

@@ -372,15 +372,17 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
         F->g[1] = P->g[1];
         F->re_s = a->ml.re_s;
         F->beta = a->ml.beta_s;
+        F->shift = a->ml.shift_s;
+        F->gamma = getenv("FPM_GAMMA") ? atof(getenv("FPM_GAMMA")) : 0;
         F->p_tol = P->p_tol;
         F->maxit = P->maxit;
         UMP_CALL(fpm_create(F, a->s, nwp, ns, a->wnx, a->wny, &a->fpm, err));
         printf("    walls:  %zu points on the wall faces (Neumann pressure, no-slip), %zu ghost particles behind "
                "them (to %g m, for the free-surface test only)\n", nwp, ss.nwall + ss.ndummy, thick);
         printf("FPM: support radius h0 = %g l0 = %g m, weight %s; free surface where n < %g n0 (n0 = %.6g, "
-               "radius %g l0); time step Eqs. 26-27: dt <= %g h0/|U|max, dt <= %g sqrt(h0/|g|)%s\n",
+               "radius %g l0) or the neighbours' centroid is off by > %g l0; time step Eqs. 26-27: dt <= %g h0/|U|max, dt <= %g sqrt(h0/|g|)%s\n",
                a->ml.support, F->h, F->weight == MLS_WFUN_SPLINE ? "spline (Eq. 5)" : "exponential (Eq. 4)",
-               F->beta, fpm_n0(a->fpm), F->re_s, a->ml.fpm_co, a->ml.fpm_cg,
+               F->beta, fpm_n0(a->fpm), F->re_s, F->shift, a->ml.fpm_co, a->ml.fpm_cg,
                F->nu > 0 ? ", dt <= 0.1 l0^2/nu (explicit viscosity)" : "");
         return UMP_OK;
     }
@@ -645,6 +647,44 @@ static ump_status relocate(mlapp *a, size_t *left, size_t *walled, size_t *lost,
     return UMP_OK;
 }
 
+/* FPM: particle management (fpm_manage): merged particles go, inserted
+ * ones are located on the mesh from a neighbour's cell (one whose walk
+ * leaves the mesh is dropped again). */
+static ump_status manage(mlapp *a, fpm_manage_stats *ms, ump_err *err)
+{
+    fpm_manage_params mg = {a->ml.d_wall, a->ml.d_min, a->ml.r_hole};
+    const unsigned char *keep;
+    size_t nb = a->s->n;
+    UMP_CALL(fpm_manage(a->fpm, &mg, &keep, ms, err));
+    size_t n1 = a->s->n; /* with the inserted ones */
+    if (ms->merged > 0) {
+        part_compact(a->s, keep);
+        fpm_compact(a->fpm, keep, n1);
+    }
+    size_t first = a->s->n - ms->inserted, drop = 0;
+    (void)nb;
+    UMP_CALL(reserve_prev(a, err));
+    for (size_t i = first; i < a->s->n; i++) {
+        double x = a->s->x[i], y = a->s->y[i];
+        ump_idx c = -1, f = -1;
+        part_where w = part_locate(a->m, a->s->cell[i], &x, &y, &c, &f);
+        a->keep[i] = w == PART_INSIDE;
+        if (w == PART_INSIDE)
+            a->s->cell[i] = c;
+        else
+            drop++;
+    }
+    if (drop) {
+        for (size_t i = 0; i < first; i++)
+            a->keep[i] = 1;
+        size_t n2 = a->s->n;
+        part_compact(a->s, a->keep);
+        fpm_compact(a->fpm, a->keep, n2);
+        ms->inserted -= drop;
+    }
+    return UMP_OK;
+}
+
 /* |U| max and mean of the fluid particles. */
 static void speeds(const mlapp *a, double *umax, double *umean, size_t *imax)
 {
@@ -768,12 +808,14 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
                a.ml.max_co, a.ctl.max_co, u_g);
     printf("\nStarting time loop\n\n");
     long step = 0;
-    size_t run_left = 0, run_walled = 0, run_lost = 0;
-    double stage_cpu[5] = {0}, stage_wall[5] = {0};
-    static const char *const mps_stage[5] = {"neighbours, number density", "viscosity (implicit, CG)",
-                                             "pressure (PPE, CG)", "correction", "locate on the mesh"};
-    static const char *const fpm_stage[5] = {"neighbours, MLS coefficients", "predictor (explicit)",
-                                             "pressure (PPE, BiCGSTAB)", "correction", "locate on the mesh"};
+    size_t run_left = 0, run_walled = 0, run_lost = 0, run_merged = 0, run_inserted = 0, run_shifted = 0;
+    double stage_cpu[6] = {0}, stage_wall[6] = {0};
+    static const char *const mps_stage[6] = {"neighbours, number density", "viscosity (implicit, CG)",
+                                             "pressure (PPE, CG)", "correction", "locate on the mesh", ""};
+    static const char *const fpm_stage[6] = {"neighbours, MLS coefficients", "predictor (explicit)",
+                                             "pressure (PPE, BiCGSTAB)", "correction", "locate on the mesh",
+                                             "particle management"};
+    const int nstage = a.fpm ? 6 : 5;
     const char *const *stage_name = a.fpm ? fpm_stage : mps_stage;
     while (rt_running(&t)) {
         /* umax, umean: of the start fields, then of the step before */
@@ -823,6 +865,17 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         run_left += left;
         run_walled += walled;
         run_lost += lost;
+        fpm_manage_stats ms = {0, 0, 0};
+        if (a.fpm && (step + 1) % a.ml.manage_interval == 0) {
+            c1 = (double)clock() / CLOCKS_PER_SEC, w1 = wall_seconds();
+            if ((rc = manage(&a, &ms, err)) != UMP_OK)
+                goto done;
+            stage_cpu[5] += (double)clock() / CLOCKS_PER_SEC - c1;
+            stage_wall[5] += wall_seconds() - w1;
+            run_merged += ms.merged;
+            run_inserted += ms.inserted;
+            run_shifted += ms.shifted;
+        }
         if (a.fpm)
             printf("FPM: %zu fluid particles, %zu on the free surface, %zu pressure unknowns (%zu wet wall points), "
                    "%zu linear MLS fits; n/n0 min %.4g max %.4g\n", fst.nfluid, fst.nsurface, fst.nunknowns,
@@ -856,6 +909,9 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         printf("Pressure: min %g max %g Pa\n", st.p_min, st.p_max);
         printf("Particles: %zu (left through open boundaries %zu, stopped at walls %zu%s)\n",
                a.s->n - ml_nsolid(&a), left, walled, lost ? ", LOST" : "");
+        if (a.fpm)
+            printf("Particle management: %zu merged, %zu inserted, %zu moved off walls\n", ms.merged, ms.inserted,
+                   ms.shifted);
         if (lost)
             printf("--> meshlessFoam Warning: %zu particles could not be located on the mesh and were removed\n",
                    lost);
@@ -889,18 +945,21 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
     }
     if (step > 0) {
         double tc = 0, tw = 0;
-        for (int k = 0; k < 5; k++) {
+        for (int k = 0; k < nstage; k++) {
             tc += stage_cpu[k];
             tw += stage_wall[k];
         }
         printf("Time by stage over %ld steps (CPU s, wall s, share of wall):\n", step);
-        for (int k = 0; k < 5; k++)
+        for (int k = 0; k < nstage; k++)
             printf("    %-34s %9.3f %9.3f %5.1f %%\n", stage_name[k], stage_cpu[k], stage_wall[k],
                    tw > 0 ? 100 * stage_wall[k] / tw : 0.0);
         printf("    %-34s %9.3f %9.3f\n\n", "total", tc, tw);
         printf("Particles over %ld steps: %zu left through open boundaries, %zu moves stopped at walls "
                "(none lost through walls)%s\n\n", step, run_left, run_walled,
                run_lost ? "; some could not be located (see the warnings)" : "");
+        if (a.fpm)
+            printf("Particle management over %ld steps: %zu merged, %zu inserted, %zu moved off walls\n\n", step,
+                   run_merged, run_inserted, run_shifted);
     }
     rc = UMP_OK;
 done:

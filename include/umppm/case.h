@@ -191,8 +191,10 @@ ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *e
  *              pressureTolerance 1e-8; velocityTolerance 1e-10;
  *              maxIter 5000; cloudName meshlessCloud; maxVelocity 0;
  *              supportRadius 3; weightFunction spline; courantFPM 0.12;
- *              gravityStepFPM 0.24; surfaceRadius 2.1; surfaceBeta 0.95; }
- * (the last six serve method FPM; reNumberDensity .. restitution and
+ *              gravityStepFPM 0.24; surfaceRadius 2.1; surfaceBeta 0.95; surfaceShift 0.2;
+ *              wallDistance 0.25; mergeDistance 0.5; holeRadius 0.9;
+ *              manageInterval 1; }
+ * (the last eleven serve method FPM; reNumberDensity .. restitution and
  * maxCo serve MPS) */
 typedef struct case_meshless {
     char method[16];             /* MPS */
@@ -214,6 +216,9 @@ typedef struct case_meshless {
     int weight;                  /* 5: spline (Eq. 5), 4: exponential (Eq. 4) */
     double fpm_co, fpm_cg;       /* coefficients of Eqs. 26, 27 */
     double re_s, beta_s;         /* free-surface number density: radius / l0, threshold */
+    double shift_s;              /* free surface: centroid offset / l0 */
+    double d_wall, d_min, r_hole;/* particle management / l0 (fpm_manage) */
+    long manage_interval;        /* steps between particle managements */
 } case_meshless;
 
 const case_option *case_meshless_options(size_t *n);

@@ -29,8 +29,9 @@
  *
  * Where the paper is silent (docs/METHOD.md section 11 gives the reasons):
  * the free surface is found by the number density of the MPS kernel,
- * n_i < beta n0 with r_s = 2.1 l0 over fluid and ghost particles (a wall
- * point with n < beta n0 is dry: p = 0 there as well); a fluid particle
+ * n_i < beta n0 with r_s = 2.1 l0 over fluid and ghost particles, or the
+ * weighted centroid of those neighbours off by more than shift l0 (a wall
+ * point found so is dry: p = 0 there as well, and it is no MLS sample); a fluid particle
  * whose MLS fit falls back to the linear basis (too few neighbours) is a
  * free-surface particle; the explicit viscous term adds dt <= 0.1 l0^2/nu
  * to Eqs. 26-27; the Neumann rows are scaled by -l0 so that the matrix has
@@ -57,6 +58,8 @@ typedef struct fpm_params {
     double g[2];        /* gravity in the plane */
     double re_s;        /* radius of the free-surface number density / l0 */
     double beta;        /* free surface: n < beta n0 */
+    double shift;       /* ... or the neighbours' centroid off by > shift l0 */
+    double gamma;       /* weight of the density deviation in the PPE source (0: Eq. 24 alone) */
     double p_tol;       /* BiCGSTAB tolerance */
     int maxit;          /* BiCGSTAB iteration limit */
 } fpm_params;
@@ -96,6 +99,33 @@ ump_status fpm_step(fpm *f, double dt, fpm_stats *st, ump_err *err);
  * max(|U|max, u_wave), u_wave the celerity of gravity waves sqrt(|g| H)
  * (H the depth of the liquid). */
 double fpm_max_dt(const fpm *f, double co, double cg, double u_wave);
+
+/* Particle management (Section 4.1 of [LHC19]), after a step and after the
+ * caller has located the particles; mg: its settings, in l0.
+ *   walls   a fluid particle closer than d_wall to a wall face (signed
+ *           distance to the nearest wall point's face) goes back to d_wall
+ *           and loses its velocity into the wall (the paper is silent on
+ *           fluid-wall pairs; without this they pile onto the wall points)
+ *   merge   pairs of fluid particles closer than d_min become one at their
+ *           midpoint, with the values interpolated there (the mean: linear
+ *           interpolation at the midpoint of the pair)
+ *   insert  at the largest Voronoi holes of the liquid (vor.h, qhull): the
+ *           circumcentres of Delaunay triangles of inside fluid particles
+ *           and wet wall points whose radius exceeds r_hole, inside their
+ *           triangle, one per triangle and no two sharing a vertex per
+ *           call; velocity and pressure by the MLS fit there (c0 of Eq. 1)
+ * *keep [n before the call + inserted]: 0 for the particles merged away
+ * (the caller compacts: part_compact, then fpm_compact); inserted
+ * particles are appended to the part_set, their cell that of a neighbour
+ * (a hint: the caller locates them). */
+typedef struct fpm_manage_params {
+    double d_wall, d_min, r_hole; /* / l0; 0 switches the action off */
+} fpm_manage_params;
+typedef struct fpm_manage_stats {
+    size_t shifted, merged, inserted;
+} fpm_manage_stats;
+ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char **keep, fpm_manage_stats *ms,
+                      ump_err *err);
 
 size_t fpm_nsolid(const fpm *f);
 size_t fpm_nwall(const fpm *f);

@@ -1,0 +1,56 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * vor.h -- the largest holes of a 2-D point cloud (module prefix vor_), for
+ * particle insertion in the meshless solver: new particles go to the
+ * largest Voronoi holes (finite particle method).
+ *
+ * The Voronoi vertices are the circumcentres of the Delaunay triangles, and
+ * each triangle's circumcircle is empty of points, so the holes are the
+ * triangles' circumcircles sorted by radius. The Delaunay triangulation is
+ * qhull's (reentrant libqhull_r, Debian package libqhull-dev), O(n log n);
+ * centres and radii are recomputed here from the input coordinates.
+ *
+ * Notes for callers:
+ *   - triangles along the convex hull of the cloud can be slivers whose
+ *     circumcircle is huge and centred far outside the cloud; filter the
+ *     centres by the domain (or keep the hull points out with mask) before
+ *     inserting at them;
+ *   - cocircular points (a lattice) give several triangles with one circle
+ *     (a lattice square: two triangles of radius h*sqrt(2)/2, same centre):
+ *     each is returned, so equal centres can appear twice;
+ *   - of exactly coincident points only one becomes a Delaunay vertex
+ *     (qhull's choice);
+ *   - triangles flatter than VOR_FLAT (twice the area below VOR_FLAT times
+ *     the longest edge squared) are skipped: their circumcentre is not
+ *     numerically meaningful.
+ * Reentrant: no global state (one qhull instance per call), so threads may
+ * call it concurrently. Prints nothing.
+ */
+#ifndef UMPPM_VOR_H
+#define UMPPM_VOR_H
+
+#include <stddef.h>
+
+#include "umppm/ump.h"
+
+#define VOR_FLAT 1.0e-10
+
+typedef struct vor_hole {
+    double x, y;   /* circumcentre of the Delaunay triangle = a Voronoi vertex */
+    double r;      /* circumradius: the empty circle's radius */
+    size_t v[3];   /* the triangle's vertices (indices into the input), ascending */
+} vor_hole;
+
+/* Delaunay triangulation of the n points (x[i], y[i]) by qhull; every
+ * triangle whose circumradius exceeds rmin and whose three vertices all have
+ * mask[v] != 0 (mask NULL: every point) is returned in *holes (allocated,
+ * caller frees; NULL and *nholes = 0 when none), sorted by decreasing radius,
+ * ties broken by the vertex triple, so the result does not depend on qhull's
+ * internal order. Fewer than 3 points, or all points collinear/coincident
+ * (within VOR_FLAT of the cloud's extent, or flat at qhull's precision):
+ * UMP_OK with no holes (not an error). Non-finite coordinates, n too large
+ * for qhull (int point ids) and other qhull failures: UMP_ERR_INPUT with
+ * qhull's message in err; qhull out of memory: UMP_ERR_NOMEM. */
+ump_status vor_holes(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
+                     vor_hole **holes, size_t *nholes, ump_err *err);
+
+#endif

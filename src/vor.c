@@ -1,0 +1,296 @@
+/* SPDX-License-Identifier: GPL-3.0-or-later
+ * vor.c -- the largest holes of a 2-D point cloud: circumcircles of the
+ * Delaunay triangles (= Voronoi vertices), by the reentrant qhull library.
+ *
+ * qhull computes the Delaunay triangulation as the lower convex hull of the
+ * points lifted to the paraboloid z = x^2 + y^2. Options (VOR_QHULL_OPTS):
+ *   d    Delaunay triangulation (lift, keep the lower hull);
+ *   Qbb  scale the lifted coordinate to the x-y range: z is a sum of
+ *        squares and otherwise dwarfs x, y (qhull's own advice for 'd');
+ *   Qt   triangulated output: cocircular points (every square of a particle
+ *        lattice) make qhull merge triangles into polygons; we need
+ *        triangles, each with its own vertex triple;
+ *   Qz   a point at infinity above the paraboloid: allows and conditions
+ *        cocircular input (a lattice, or every point on one circle, which
+ *        without it is a flat hull and an error); its facets are upper
+ *        Delaunay and skipped;
+ *   Q12  nearly coincident particles can create a "wide dupridge" in the
+ *        3-D hull, which qhull otherwise reports as an error: a hole list
+ *        that is imprecise next to such a pair is better for insertion than
+ *        none at all.
+ * Not used: Qc (keeps coplanar points with their facets; we read vertices
+ * only, so it would be wasted work), QJ (joggle instead of Qt: triangulates
+ * randomly perturbed points, so the circles are only nearly empty and the
+ * split of a cocircular polygon changes with the perturbation).
+ *
+ * The points are shifted to their centroid and scaled by a power of two to
+ * [-1, 1] before qhull sees them, so the lifted coordinate does not lose the
+ * cloud's detail to a large offset (nor overflow). The circumcentres are
+ * recomputed here from the original coordinates, relative to one vertex
+ * (differences first, so a lattice's holes are exact) and with the vertices
+ * in a canonical order of their coordinates, so a circle's bits depend only
+ * on its three points, not on their input numbering or qhull's facet order.
+ *
+ * qhull reports errors on its errfile: that is an open_memstream buffer
+ * (nothing reaches stdout/stderr) whose first error line goes into err.
+ */
+#include "umppm/vor.h"
+
+#include <libqhull_r/libqhull_r.h>
+
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* "qhull " prefix required by qh_new_qhull; see the comment above. */
+#define VOR_QHULL_OPTS "qhull d Qbb Qt Qz Q12"
+/* Longest qhull message copied into err (err->msg is 1024 bytes). */
+#define VOR_MSG_MAX 800
+
+/* The input, its centroid and its scale: s = 2^-e with the cloud's
+ * half-extent in [2^(e-1), 2^e). Multiplying by a power of two is exact, so
+ * the scaled arithmetic gives the unscaled results bit for bit, without
+ * overflow of squares (|x| ~ 1e200) or underflow (|x| ~ 1e-300). */
+typedef struct vor_cloud {
+    const double *x, *y;
+    size_t n;
+    const unsigned char *mask;
+    double cx, cy, s;
+    int e;
+} vor_cloud;
+
+/* Lexicographic (x, y, index) order: canonical order of a triangle's
+ * vertices, independent of their numbering up to exactly equal points. */
+static int pt_before(const vor_cloud *c, size_t a, size_t b)
+{
+    if (c->x[a] != c->x[b])
+        return c->x[a] < c->x[b];
+    if (c->y[a] != c->y[b])
+        return c->y[a] < c->y[b];
+    return a < b;
+}
+
+/* Circumcircle of triangle t into h (v[] ascending). Returns 0 for a
+ * triangle flatter than VOR_FLAT. */
+static int circumcircle(const vor_cloud *cl, const size_t t[3], vor_hole *h)
+{
+    const double *x = cl->x, *y = cl->y, s = cl->s;
+    size_t p[3] = {t[0], t[1], t[2]}, w;
+    /* Three-element sort into canonical order. */
+    if (pt_before(cl, p[1], p[0])) { w = p[0]; p[0] = p[1]; p[1] = w; }
+    if (pt_before(cl, p[2], p[1])) { w = p[1]; p[1] = p[2]; p[2] = w; }
+    if (pt_before(cl, p[1], p[0])) { w = p[0]; p[0] = p[1]; p[1] = w; }
+    double l[3];
+    for (int k = 0; k < 3; k++) { /* l[k]: squared edge opposite p[k] */
+        size_t i = p[(k + 1) % 3], j = p[(k + 2) % 3];
+        double dx = (x[j] - x[i]) * s, dy = (y[j] - y[i]) * s;
+        l[k] = dx * dx + dy * dy;
+    }
+    /* Origin at the vertex opposite the longest edge: its two edges are the
+     * shortest, so their cross product (2*area) has the least relative
+     * rounding error for the given area. */
+    int k = 0;
+    if (l[1] > l[k])
+        k = 1;
+    if (l[2] > l[k])
+        k = 2;
+    size_t a = p[k], b = p[(k + 1) % 3], c = p[(k + 2) % 3];
+    double bx = (x[b] - x[a]) * s, by = (y[b] - y[a]) * s;
+    double cx = (x[c] - x[a]) * s, cy = (y[c] - y[a]) * s;
+    double d = bx * cy - by * cx; /* twice the signed area */
+    if (!(fabs(d) > VOR_FLAT * l[k]))
+        return 0;
+    double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+    double ux = (cy * b2 - by * c2) / (2 * d), uy = (bx * c2 - cx * b2) / (2 * d);
+    h->x = x[a] + ldexp(ux, cl->e);
+    h->y = y[a] + ldexp(uy, cl->e);
+    h->r = ldexp(hypot(ux, uy), cl->e);
+    h->v[0] = UMP_MIN(t[0], UMP_MIN(t[1], t[2]));
+    h->v[2] = UMP_MAX(t[0], UMP_MAX(t[1], t[2]));
+    h->v[1] = t[0] + t[1] + t[2] - h->v[0] - h->v[2];
+    return 1;
+}
+
+/* Decreasing radius, then ascending vertex triple: a total order. */
+static int hole_cmp(const void *pa, const void *pb)
+{
+    const vor_hole *a = pa, *b = pb;
+    if (a->r != b->r)
+        return a->r > b->r ? -1 : 1;
+    for (int k = 0; k < 3; k++)
+        if (a->v[k] != b->v[k])
+            return a->v[k] < b->v[k] ? -1 : 1;
+    return 0;
+}
+
+/* The vertex triple of a lower-Delaunay facet whose vertices are all input
+ * points (not qhull's point at infinity) kept by mask; 0 otherwise. */
+static int facet_triple(qhT *qh, facetT *facet, const vor_cloud *cl, size_t t[3])
+{
+    vertexT *vertex, **vertexp;
+    int nv = 0;
+    if (facet->upperdelaunay)
+        return 0;
+    /* A loop rather than qh_setsize: nothing here may reach qh_errexit,
+     * which after qh_new_qhull has returned would call exit(). */
+    FOREACHvertex_(facet->vertices) {
+        int id = qh_pointid(qh, vertex->point);
+        if (nv == 3 || id < 0 || (size_t)id >= cl->n || (cl->mask && !cl->mask[id]))
+            return 0;
+        t[nv++] = (size_t)id;
+    }
+    return nv == 3; /* Qt: every facet is a triangle */
+}
+
+/* Collect the qualifying circles of the finished triangulation. */
+static ump_status collect(qhT *qh, const vor_cloud *cl, double rmin, vor_hole **holes, size_t *nholes,
+                          ump_err *err)
+{
+    facetT *facet;
+    size_t t[3], cap = 0, m = 0;
+    FORALLfacets { /* an upper bound; one pass over the vertices below */
+        cap++;
+    }
+    if (cap == 0)
+        return UMP_OK;
+    vor_hole *h = ump_alloc_array(cap, sizeof *h);
+    UMP_CHECK(h, err, UMP_ERR_NOMEM, "vor: out of memory for %zu Delaunay triangles", cap);
+    FORALLfacets {
+        if (facet_triple(qh, facet, cl, t) && circumcircle(cl, t, &h[m]) && h[m].r > rmin)
+            m++;
+    }
+    if (m == 0) {
+        free(h);
+        return UMP_OK;
+    }
+    qsort(h, m, sizeof *h, hole_cmp);
+    vor_hole *hs = ump_realloc_array(h, m, sizeof *h);
+    *holes = hs ? hs : h; /* shrinking cannot really fail; keep h if it does */
+    *nholes = m;
+    return UMP_OK;
+}
+
+/* qhull's first error line ("QH6xxx ..."), else its first line, from buf. */
+static void qhull_message(const char *buf, const char **msg, int *len)
+{
+    const char *s = NULL;
+    if (buf) {
+        for (const char *q = buf; q && *q; q = strchr(q, '\n'), q = q ? q + 1 : NULL)
+            if (strncmp(q, "QH6", 3) == 0) {
+                s = q;
+                break;
+            }
+        if (!s)
+            for (s = buf; *s == '\n' || *s == ' '; s++)
+                ;
+    }
+    if (!s || !*s) {
+        *msg = "(no message)";
+        *len = (int)strlen(*msg);
+        return;
+    }
+    size_t l = strcspn(s, "\n");
+    *msg = s;
+    *len = (int)UMP_MIN(l, (size_t)VOR_MSG_MAX);
+}
+
+/* Centroid and scale of the cloud, and whether it is flat: every point
+ * within VOR_FLAT * R of the line from the centroid to the farthest point
+ * (R its distance), or all points coincident. Fails on non-finite input. */
+static ump_status cloud_shape(vor_cloud *c, int *flat, ump_err *err)
+{
+    const double *x = c->x, *y = c->y;
+    size_t n = c->n;
+    double sx = 0, sy = 0;
+    for (size_t i = 0; i < n; i++) {
+        UMP_CHECK(isfinite(x[i]) && isfinite(y[i]), err, UMP_ERR_INPUT,
+                  "vor: point %zu (%g, %g) is not finite", i, x[i], y[i]);
+        sx += x[i];
+        sy += y[i];
+    }
+    c->cx = sx / (double)n;
+    c->cy = sy / (double)n;
+    double ext = 0;
+    for (size_t i = 0; i < n; i++)
+        ext = fmax(ext, fmax(fabs(x[i] - c->cx), fabs(y[i] - c->cy)));
+    UMP_CHECK(isfinite(ext), err, UMP_ERR_INPUT, "vor: the cloud's extent overflows (coordinates near %g)",
+              fabs(c->cx) > fabs(c->cy) ? c->cx : c->cy);
+    *flat = 1;
+    if (ext == 0) /* all coincident */
+        return UMP_OK;
+    frexp(ext, &c->e);
+    c->e = c->e < -1000 ? -1000 : c->e; /* keep s finite for subnormal extents */
+    c->s = ldexp(1.0, -c->e);
+    double r2 = 0, fx = 0, fy = 0;
+    for (size_t i = 0; i < n; i++) {
+        double dx = (x[i] - c->cx) * c->s, dy = (y[i] - c->cy) * c->s, d2 = dx * dx + dy * dy;
+        if (d2 > r2) {
+            r2 = d2;
+            fx = dx;
+            fy = dy;
+        }
+    }
+    double cmax = 0; /* max |cross| = distance to the line times R */
+    for (size_t i = 0; i < n; i++)
+        cmax = fmax(cmax, fabs((x[i] - c->cx) * c->s * fy - (y[i] - c->cy) * c->s * fx));
+    *flat = !(cmax > VOR_FLAT * r2);
+    return UMP_OK;
+}
+
+ump_status vor_holes(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
+                     vor_hole **holes, size_t *nholes, ump_err *err)
+{
+    *holes = NULL;
+    *nholes = 0;
+    if (n < 3)
+        return UMP_OK;
+    /* qhull numbers points with int, and Qz adds one. */
+    UMP_CHECK(n < (size_t)INT_MAX, err, UMP_ERR_INPUT, "vor: %zu points are too many for qhull", n);
+    vor_cloud cl = {.x = x, .y = y, .n = n, .mask = mask, .s = 1.0};
+    int flat = 1;
+    UMP_CALL(cloud_shape(&cl, &flat, err));
+    if (flat)
+        return UMP_OK;
+
+    coordT *pts = ump_alloc_array(2 * n, sizeof *pts);
+    qhT *qh = ump_alloc_array(1, sizeof *qh); /* ~ 9 kB: not on a thread's stack */
+    char *ebuf = NULL;
+    size_t elen = 0;
+    FILE *ferr = (pts && qh) ? open_memstream(&ebuf, &elen) : NULL;
+    if (!ferr) {
+        free(pts);
+        free(qh);
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "vor: out of memory for %zu points", n);
+    }
+    for (size_t i = 0; i < n; i++) { /* centred and scaled to [-1, 1]: conditioning */
+        pts[2 * i] = (x[i] - cl.cx) * cl.s;
+        pts[2 * i + 1] = (y[i] - cl.cy) * cl.s;
+    }
+    char opts[] = VOR_QHULL_OPTS; /* qh_new_qhull takes a non-const string */
+    qh_zero(qh, ferr);
+    int code = qh_new_qhull(qh, 2, (int)n, pts, False, opts, NULL, ferr);
+    ump_status st = UMP_OK;
+    if (code == qh_ERRnone)
+        st = collect(qh, &cl, rmin, holes, nholes, err);
+    int curlong, totlong;
+    qh_freeqhull(qh, !qh_ALL);
+    qh_memfreeshort(qh, &curlong, &totlong);
+    free(qh);
+    free(pts);
+    fclose(ferr); /* ebuf is now NUL-terminated (or NULL if the stream failed) */
+
+    if (code == qh_ERRsingular) {
+        /* Flat at qhull's precision (nearly collinear): no triangles. */
+        st = UMP_OK;
+    } else if (code != qh_ERRnone) {
+        const char *msg;
+        int len;
+        qhull_message(ebuf, &msg, &len);
+        st = UMP_FAIL(err, code == qh_ERRmem ? UMP_ERR_NOMEM : UMP_ERR_INPUT,
+                      "vor: qhull failed (exit code %d) on %zu points: %.*s", code, n, len, msg);
+    }
+    free(ebuf);
+    return st;
+}
