@@ -22,14 +22,14 @@ OMP     ?= -fopenmp
 FPFLAGS ?= -fno-math-errno -ffp-contract=fast
 CPPFLAGS = -Iinclude -I/usr/include/suitesparse -D_XOPEN_SOURCE=700
 CFLAGS_ALL = -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wvla $(WERROR) $(OPT) $(OMP) $(FPFLAGS) $(SAN)
-LDLIBS  = -lumfpack -lklu -lcholmod -lamd -lcolamd -lsuitesparseconfig -lz -lm
+LDLIBS  = -lumfpack -lklu -lcholmod -lamd -lcolamd -lsuitesparseconfig -lqhull_r -lz -lm
 TEST_LDLIBS = -lcmocka
 
 # libopenblas0-serial: Debian then points libblas.so.3 at OpenBLAS (single
 # threaded) instead of the reference BLAS, so UMFPACK's and CHOLMOD's dense
 # kernels are optimised: the PPE factorization at start-up takes half the time.
 DEB_PACKAGES = build-essential clang libclang-rt-14-dev libomp-14-dev libsuitesparse-dev libopenblas0-serial \
-               zlib1g-dev libcmocka-dev openfoam openfoam-examples gmsh gnuplot-nox
+               zlib1g-dev libcmocka-dev libqhull-dev openfoam openfoam-examples gmsh gnuplot-nox
 
 LIB_SRC  = $(filter-out src/main.c src/main_meshless.c,$(wildcard src/*.c))
 LIB_OBJ  = $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o)
