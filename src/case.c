@@ -917,12 +917,14 @@ static const case_option meshless_options[] = {
      "FPM: dt <= courantFPM h0 / |U|max (Eq. 26), with adjustTimeStep", ML_FIELD(fpm_co)},
     {"gravityStepFPM", CASE_OPT_SCALAR, "0.24", 0.24, NULL, NULL, ML_RANGE(0, 1),
      "FPM: dt <= gravityStepFPM sqrt(h0 / |g|) (Eq. 27), with adjustTimeStep", ML_FIELD(fpm_cg)},
-    {"surfaceRadius", CASE_OPT_SCALAR, "2.1", 2.1, NULL, NULL, ML_RANGE(1, 4),
+    {"surfaceRadius", CASE_OPT_SCALAR, "3", 3, NULL, NULL, ML_RANGE(1, 4),
      "FPM: radius / l0 of the number density of the free-surface test", ML_FIELD(re_s)},
-    {"surfaceBeta", CASE_OPT_SCALAR, "0.95", 0.95, NULL, NULL, UM_OPEN01,
+    {"surfaceBeta", CASE_OPT_SCALAR, "0.8", 0.8, NULL, NULL, UM_OPEN01,
      "FPM: free surface where the number density < surfaceBeta n0", ML_FIELD(beta_s)},
     {"surfaceShift", CASE_OPT_SCALAR, "0.2", 0.2, NULL, NULL, UM_GT(0),
      "FPM: ... or where the neighbours' centroid is off by > surfaceShift l0", ML_FIELD(shift_s)},
+    {"densitySourceFPM", CASE_OPT_SCALAR, "0.02", 0.02, NULL, NULL, ML_CLOSED(0, 1),
+     "FPM: weight of the density deviation added to Eq. 24's source (0: the paper's alone)", ML_FIELD(gamma_fpm)},
     {"wallDistance", CASE_OPT_SCALAR, "0.25", 0.25, NULL, NULL, ML_CLOSED(0, 0.5),
      "FPM: fluid particles closer to a wall go back to this distance / l0; 0: off", ML_FIELD(d_wall)},
     {"mergeDistance", CASE_OPT_SCALAR, "0.5", 0.5, NULL, NULL, ML_CLOSED(0, 0.9),
@@ -1070,4 +1072,90 @@ int case_stamp_equal(const case_stamp *a, const case_stamp *b)
 {
     return a->dev == b->dev && a->ino == b->ino && a->size == b->size && a->mtime_sec == b->mtime_sec &&
            a->mtime_nsec == b->mtime_nsec && a->ctime_sec == b->ctime_sec && a->ctime_nsec == b->ctime_nsec;
+}
+
+/* ---- meshlessFoam: the moving container --------------------------------------- */
+
+/* The word of a primitive entry, NULL when absent or not one word. */
+static const char *word_of_entry(const foam_entry *e)
+{
+    if (!e || e->dict || e->ntok < 1 || (e->tok[0].type != FOAM_TOK_WORD && e->tok[0].type != FOAM_TOK_STRING))
+        return NULL;
+    return e->tok[0].v.str;
+}
+
+ump_status case_read_motion(const char *case_dir, case_motion *mo, ump_err *err)
+{
+    memset(mo, 0, sizeof *mo);
+    char path[4096];
+    snprintf(path, sizeof path, "%s/constant/dynamicMeshDict", case_dir);
+    if (!foam_file_exists(path))
+        return UMP_OK;
+    foam_file *f = NULL;
+    UMP_CALL(foam_file_read(path, &f, err));
+    const foam_dict *d = f->dict;
+    ump_status rc = UMP_OK;
+    const char *w = NULL;
+    const foam_entry *e = foam_dict_find(d, "dynamicFvMesh", 0);
+    if (!e)
+        goto done; /* OpenFOAM's default: staticFvMesh */
+    if ((rc = foam_get_word(d, "dynamicFvMesh", &w, err)) != UMP_OK)
+        goto done;
+    if (strcmp(w, "staticFvMesh") == 0)
+        goto done;
+    if (strcmp(w, "dynamicMotionSolverFvMesh") != 0) {
+        rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: dynamicFvMesh %s: meshlessFoam implements a container in "
+                      "rigid motion only (dynamicMotionSolverFvMesh with motionSolver solidBody and "
+                      "solidBodyMotionFunction oscillatingLinearMotion); use interFoam", e->file, e->line, w);
+        goto done;
+    }
+    const char *solver = NULL;
+    e = foam_dict_find(d, "motionSolver", 0);
+    if (!e)
+        e = foam_dict_find(d, "solver", 0);
+    if (e && !e->dict && e->ntok > 0 && e->tok[0].type == FOAM_TOK_WORD)
+        solver = e->tok[0].v.str;
+    if (!solver || strcmp(solver, "solidBody") != 0) {
+        rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s: motionSolver %s: meshlessFoam implements the solidBody motion "
+                      "of the whole mesh only (a moving container); mesh deformation (displacementLaplacian, "
+                      "wave makers) is not implemented in this version; use interFoam", path,
+                      solver ? solver : "(none)");
+        goto done;
+    }
+    const foam_dict *c = d;
+    const foam_entry *sc = foam_dict_find(d, "solidBodyCoeffs", 0);
+    if (sc && sc->dict && foam_dict_find(sc->dict, "solidBodyMotionFunction", 0))
+        c = sc->dict;
+    static const char *const part[] = {"cellZone", "cellSet"};
+    for (int k = 0; k < 2; k++) {
+        const foam_entry *z = foam_dict_find(c, part[k], 0);
+        const char *zw = word_of_entry(z);
+        if (z && !(zw && strcmp(zw, "none") == 0)) {
+            rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: %s: the motion of part of the mesh is not implemented "
+                          "by meshlessFoam (the whole container moves); use interFoam", z->file, z->line, part[k]);
+            goto done;
+        }
+    }
+    const char *fn = NULL;
+    if ((rc = foam_get_word(c, "solidBodyMotionFunction", &fn, err)) != UMP_OK)
+        goto done;
+    if (strcmp(fn, "oscillatingLinearMotion") != 0) {
+        e = foam_dict_find(c, "solidBodyMotionFunction", 0);
+        rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: solidBodyMotionFunction %s is not implemented by "
+                      "meshlessFoam (oscillatingLinearMotion only); use interFoam", e->file, e->line, fn);
+        goto done;
+    }
+    e = foam_dict_find(c, "oscillatingLinearMotionCoeffs", 0);
+    if (!e || !e->dict) {
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: solidBodyMotionFunction oscillatingLinearMotion needs "
+                      "oscillatingLinearMotionCoeffs { amplitude (x y z); omega w; }", path);
+        goto done;
+    }
+    if ((rc = foam_get_vector(e->dict, "amplitude", mo->amplitude, err)) != UMP_OK ||
+        (rc = foam_get_scalar(e->dict, "omega", &mo->omega, err)) != UMP_OK)
+        goto done;
+    mo->on = 1;
+done:
+    foam_file_free(&f);
+    return rc;
 }

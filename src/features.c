@@ -14,6 +14,7 @@
  * an MRF zone is active unless `active false` (MRFZone.C).
  */
 #include "umppm/features.h"
+#include "umppm/case.h"
 #include "umppm/foam.h"
 
 #include <dirent.h>
@@ -332,7 +333,9 @@ ump_status feat_check_meshless(const char *case_dir, ump_err *err)
 {
     feat_solver = "meshlessFoam";
     feat_instead = "interFoam";
-    ump_status rc = check_dynamic_mesh(case_dir, err);
+    /* a moving container (case_read_motion) is the one dynamic mesh it runs */
+    case_motion mo;
+    ump_status rc = case_read_motion(case_dir, &mo, err);
     if (rc == UMP_OK)
         rc = check_finite_area(case_dir, err);
     if (rc == UMP_OK)

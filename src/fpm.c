@@ -44,6 +44,7 @@ struct fpm {
     unsigned char *kind;     /* [cap] */
     double *p, *nd, *ut, *vt;
     double *sx, *sy, *sl;    /* the particle's own coefficient in its fit */
+    double *src;             /* right-hand side of the pressure rows */
     unsigned char *surf;     /* fluid: free surface; wall: dry (p = 0) */
     unsigned char *quad;     /* the fit used the quadratic basis */
     long *unk;               /* PPE unknown of a particle, -1 if none */
@@ -84,6 +85,17 @@ static double wall_seconds(void)
         (ptr) = q_;                                                                                     \
     } while (0)
 
+/* Kernel of the free-surface number density: the spline of Eq. 5 on the
+ * radius rs. Smooth, unlike MPS's r_e/r - 1, whose pole makes the density
+ * of a jittered lattice swing by 7 % (measured: +-0.1 l0 jitter gave
+ * n/n0 = 0.93 inside the liquid, a false free surface). */
+static inline double surf_weight(double r, double rs)
+{
+    double w, w1, wq, w2;
+    mls_wfun_eval(MLS_WFUN_SPLINE, r / rs, &w, &w1, &wq, &w2);
+    return w;
+}
+
 static ump_status reserve(fpm *f, ump_err *err)
 {
     size_t n = f->s->n;
@@ -98,6 +110,7 @@ static ump_status reserve(fpm *f, ump_err *err)
     GROW_TO(f->sx, nc);
     GROW_TO(f->sy, nc);
     GROW_TO(f->sl, nc);
+    GROW_TO(f->src, nc);
     GROW_TO(f->surf, nc);
     GROW_TO(f->quad, nc);
     GROW_TO(f->unk, nc);
@@ -129,8 +142,13 @@ ump_status fpm_create(const fpm_params *prm, part_set *s, size_t nwall, size_t n
     f->s = s;
     f->nw = nwall;
     f->ns = nsolid;
-    double sr;
-    mps_lattice_sums(prm->re_s, &f->n0, &sr);
+    /* n0: the density of the full square lattice (origin excluded) */
+    f->n0 = 0;
+    int kmax = (int)ceil(prm->re_s) + 1;
+    for (int a = -kmax; a <= kmax; a++)
+        for (int b = -kmax; b <= kmax; b++)
+            if (a || b)
+                f->n0 += surf_weight(prm->l0 * hypot(a, b), prm->re_s * prm->l0);
     ump_status rc = reserve(f, err);
     if (rc == UMP_OK) {
         f->wnx = ump_alloc_array(nwall + 1, sizeof *f->wnx);
@@ -170,6 +188,7 @@ void fpm_free(fpm **pf)
     free(f->sx);
     free(f->sy);
     free(f->sl);
+    free(f->src);
     free(f->surf);
     free(f->quad);
     free(f->unk);
@@ -199,6 +218,11 @@ void fpm_free(fpm **pf)
 double *fpm_wall_accel(fpm *f) { return f->wacc; }
 double *fpm_wall_normal(fpm *f, int comp) { return comp ? f->wny : f->wnx; }
 size_t fpm_nsolid(const fpm *f) { return f->ns; }
+void fpm_set_gravity(fpm *f, const double g[2])
+{
+    f->P.g[0] = g[0];
+    f->P.g[1] = g[1];
+}
 size_t fpm_nwall(const fpm *f) { return f->nw; }
 const double *fpm_pressure(const fpm *f) { return f->p; }
 const double *fpm_density(const fpm *f) { return f->nd; }
@@ -245,6 +269,7 @@ double fpm_max_dt(const fpm *f, double co, double cg, double u_wave)
 
 /* ---- MLS rows ------------------------------------------------------------------ */
 
+
 /* Number density, free surface and the MLS coefficients of every fluid
  * particle and wall point (Eqs. 1-18 via mls_full). The free surface: a
  * number density below beta n0, or the weighted centroid of the
@@ -284,7 +309,7 @@ static ump_status mls_rows(fpm *f, fpm_stats *st, ump_err *err)
         double nd = 0, mx = 0, my = 0;
         for (size_t q = R->off[i]; q < R->off[i + 1]; q++)
             if (f->kind[R->j[q]] != FPM_WALL) {
-                double w = mps_weight(R->r[q], rs);
+                double w = surf_weight(R->r[q], rs);
                 nd += w;
                 mx += w * R->dx[q];
                 my += w * R->dy[q];
@@ -370,15 +395,17 @@ static ump_status matrix_reserve(fpm *f, size_t nrows, size_t nz, ump_err *err)
     return UMP_OK;
 }
 
-static ump_status pressure(fpm *f, double dt, fpm_stats *st, ump_err *err)
+/* The pressure system at the current classification: lap p = src_i on
+ * the fluid particles inside (Eq. 24's form), dp/dn = flux_i on the wet
+ * wall points (Eq. 25's form; i < nwall), p = pd_i (NULL: 0) on the
+ * free-surface particles and dry wall points; BiCGSTAB with ILU(0) from
+ * the last pressure. src and flux are indexed by particle [n]. */
+static ump_status solve_ppe(fpm *f, const double *src, const double *flux, const double *pd, fpm_stats *st,
+                            ump_err *err)
 {
-    part_set *s = f->s;
-    size_t n = s->n;
+    size_t n = f->s->n;
     const pnbr *R = &f->nb;
-    const double rho = f->P.rho, mu = f->P.rho * f->P.nu, l0 = f->P.l0;
-    /* the density term as in MPS's Eq. 18: lap p = -rho/dt^2 (n - n0)/n0,
-     * with the MPS Laplacian's 2d/lambda ~ 4/l0^2 ... its scale: */
-    const double gscale = 1.0;
+    const double l0 = f->P.l0;
     /* unknowns: fluid particles inside the liquid, wet wall points */
     size_t nu = 0, nneu = 0;
     for (size_t i = 0; i < n; i++) {
@@ -393,7 +420,7 @@ static ump_status pressure(fpm *f, double dt, fpm_stats *st, ump_err *err)
     st->nneumann = nneu;
     for (size_t i = 0; i < n; i++)
         if (f->unk[i] < 0)
-            f->p[i] = 0;
+            f->p[i] = f->kind[i] != FPM_GHOST && pd ? pd[i] : 0;
     if (nu == 0)
         return UMP_OK;
     /* row lengths: the unknown neighbours with a coefficient, and itself */
@@ -410,41 +437,26 @@ static ump_status pressure(fpm *f, double dt, fpm_stats *st, ump_err *err)
     for (size_t r = 0; r < nu; r++) {
         size_t i = f->unk_part[r];
         ump_idx k = f->rp[r];
-        if (f->kind[i] == FPM_FLUID) {
-            /* Eq. 24: lap p = rho/dt div u~ */
-            f->ci[k] = (ump_idx)r;
-            f->av[k++] = f->sl[i];
-            for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
-                long u = f->unk[R->j[q]];
-                if (u >= 0 && (f->cx[q] != 0 || f->cy[q] != 0 || f->cl[q] != 0)) {
-                    f->ci[k] = (ump_idx)u;
-                    f->av[k++] = f->cl[q];
-                }
+        int wall = f->kind[i] == FPM_WALL;
+        /* a Laplacian row, or a normal-derivative row scaled by -l0 (one
+         * sign on the diagonal for ILU(0)) */
+        double nx = wall ? f->wnx[i] : 0, ny = wall ? f->wny[i] : 0, sc = wall ? -l0 : 1, b = wall ? flux[i] : src[i];
+        f->ci[k] = (ump_idx)r;
+        f->av[k++] = wall ? sc * (nx * f->sx[i] + ny * f->sy[i]) : f->sl[i];
+        for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
+            size_t j = R->j[q];
+            if (f->cx[q] == 0 && f->cy[q] == 0 && f->cl[q] == 0)
+                continue;
+            double a = wall ? sc * (nx * f->cx[q] + ny * f->cy[q]) : f->cl[q];
+            long u = f->unk[j];
+            if (u >= 0) {
+                f->ci[k] = (ump_idx)u;
+                f->av[k++] = a;
+            } else if (f->kind[j] != FPM_GHOST) {
+                b -= (wall ? a / sc : a) * f->p[j]; /* a known (Dirichlet) value */
             }
-            double div = row_sum(f, i, f->cx, f->sx[i], f->ut) + row_sum(f, i, f->cy, f->sy[i], f->vt);
-            /* + the density deviation (a departure, docs/METHOD.md 11): with
-             * div u~ alone the particles drift into clusters (n/n0 1.4 in the
-             * dam break) that the MLS operators turn into pressure noise */
-            f->b[r] = rho / dt * div - f->P.gamma * rho / (dt * dt) * (f->nd[i] - 1) * gscale;
-        } else {
-            /* Eq. 25 on a wall point, scaled by -l0:
-             * dp/dn = rho n.(g - a_w) + mu n.lap u */
-            size_t w = i;
-            double nx = f->wnx[w], ny = f->wny[w], sc = -l0;
-            f->ci[k] = (ump_idx)r;
-            f->av[k++] = sc * (nx * f->sx[i] + ny * f->sy[i]);
-            for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
-                long u = f->unk[R->j[q]];
-                if (u >= 0 && (f->cx[q] != 0 || f->cy[q] != 0 || f->cl[q] != 0)) {
-                    f->ci[k] = (ump_idx)u;
-                    f->av[k++] = sc * (nx * f->cx[q] + ny * f->cy[q]);
-                }
-            }
-            double lu = row_sum(f, i, f->cl, f->sl[i], s->u), lv = row_sum(f, i, f->cl, f->sl[i], s->v);
-            double rhs = rho * (nx * (f->P.g[0] - f->wacc[2 * w]) + ny * (f->P.g[1] - f->wacc[2 * w + 1])) +
-                         mu * (nx * lu + ny * lv);
-            f->b[r] = sc * rhs;
         }
+        f->b[r] = sc * b;
     }
     for (size_t r = 0; r < nu; r++)
         f->x[r] = f->p[f->unk_part[r]]; /* warm start: the last pressure */
@@ -465,6 +477,56 @@ static ump_status pressure(fpm *f, double dt, fpm_stats *st, ump_err *err)
     for (size_t r = 0; r < nu; r++)
         f->p[f->unk_part[r]] = f->x[r];
     return UMP_OK;
+}
+
+/* The step's pressure: Eq. 24's source rho/dt div u~ (plus the optional
+ * density term) and Eq. 25's wall flux, p = 0 on the free surface. */
+static ump_status pressure(fpm *f, double dt, fpm_stats *st, ump_err *err)
+{
+    part_set *s = f->s;
+    size_t n = s->n;
+    const double rho = f->P.rho, mu = f->P.rho * f->P.nu, rs = f->P.re_s * f->P.l0;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        f->src[i] = 0;
+        if (f->kind[i] == FPM_GHOST || f->surf[i])
+            continue;
+        if (f->kind[i] == FPM_FLUID) {
+            /* Eq. 24: lap p = rho/dt div u~; + the density deviation (a
+             * departure, docs/METHOD.md 11, off by default) */
+            double div = row_sum(f, i, f->cx, f->sx[i], f->ut) + row_sum(f, i, f->cy, f->sy[i], f->vt);
+            f->src[i] = rho / dt * div;
+            /* the density term only where the kernel of the number density
+             * does not reach the free surface (there n < n0 by geometry, not
+             * by a cavity: at rest, the rows below the surface would move) */
+            if (f->P.gamma > 0) {
+                int near = 0;
+                const pnbr *R = &f->nb;
+                for (size_t q = R->off[i]; q < R->off[i + 1] && !near; q++)
+                    near = f->kind[R->j[q]] == FPM_FLUID && f->surf[R->j[q]] && R->r[q] < rs;
+                if (!near)
+                    f->src[i] -= f->P.gamma * rho / (dt * dt) * (f->nd[i] - 1);
+            }
+        } else {
+            /* Eq. 25: dp/dn = rho n.(g - a_w) + mu n.lap u */
+            double nx = f->wnx[i], ny = f->wny[i];
+            double lu = row_sum(f, i, f->cl, f->sl[i], s->u), lv = row_sum(f, i, f->cl, f->sl[i], s->v);
+            f->src[i] = rho * (nx * (f->P.g[0] - f->wacc[2 * i]) + ny * (f->P.g[1] - f->wacc[2 * i + 1])) +
+                        mu * (nx * lu + ny * lv);
+        }
+    }
+    return solve_ppe(f, f->src, f->src, NULL, st, err);
+}
+
+ump_status fpm_poisson(fpm *f, const double *src, const double *flux, const double *pd, fpm_stats *st,
+                       ump_err *err)
+{
+    memset(st, 0, sizeof *st);
+    UMP_CALL(reserve(f, err));
+    static const int need[3] = {1, 1, 0};
+    UMP_CALL(pnbr_update(&f->nb, f->s, f->kind, need, f->P.h, FPM_SKIN * f->P.l0, 1, "FPM", err));
+    UMP_CALL(mls_rows(f, st, err));
+    return solve_ppe(f, src, flux, pd, st, err);
 }
 
 /* ---- the step ------------------------------------------------------------------ */

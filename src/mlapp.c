@@ -80,6 +80,8 @@ typedef struct mlapp {
     ump_idx *wall_face;              /* FPM: the wall face of each wall point [nwall] */
     double *wnx, *wny;               /* FPM: their outward normals at seeding [nwall] */
     double g2[2];                    /* gravity in the plane */
+    case_motion mo;                  /* a moving container (case.h) */
+    double amp2[2];                  /* its amplitude in the plane */
     double *prev_x, *prev_y;         /* fluid positions before the step [cap] */
     ump_idx *prev_cell;
     unsigned char *keep;
@@ -177,10 +179,13 @@ static ump_status check_boundary(mlapp *a, ump_err *err)
         case PMESH_EMPTY:
             continue;
         case PMESH_WALL:
-            if (!((up->type == FLD_BC_NOSLIP) || (up->type == FLD_BC_FIXEDVALUE && patch_zero(a->U, p))))
+            /* movingWallVelocity: no-slip relative to the wall, which is
+             * what a wall of the (moving or fixed) container is */
+            if (!((up->type == FLD_BC_NOSLIP) || (up->type == FLD_BC_MOVINGWALLVELOCITY && patch_zero(a->U, p)) ||
+                  (up->type == FLD_BC_FIXEDVALUE && patch_zero(a->U, p))))
                 return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                                "%s/0/U: wall patch '%s' has U %s%s: meshlessFoam's walls are fixed and "
-                                "no-slip (noSlip or fixedValue (0 0 0)); moving walls and slip walls are not "
+                                "%s/0/U: wall patch '%s' has U %s%s: meshlessFoam's walls are no-slip "
+                                "(noSlip, movingWallVelocity or fixedValue (0 0 0)); moving walls and slip walls are not "
                                 "implemented in this version; use interFoam", a->case_dir, pp->name,
                                 fld_bc_name(up->type), up->type == FLD_BC_FIXEDVALUE ? " (not zero)" : "");
             a->wall_patch[p] = 1;
@@ -224,6 +229,17 @@ static ump_status read_case(mlapp *a, const char *tname, ump_err *err)
     a->g2[0] = a->bu.g[m->ax[0]];
     a->g2[1] = a->bu.g[m->ax[1]];
     UMP_CALL(case_read_meshless(a->case_dir, &a->ml, err));
+    UMP_CALL(case_read_motion(a->case_dir, &a->mo, err));
+    if (a->mo.on) {
+        const double *A = a->mo.amplitude;
+        if (fabs(A[m->normal]) > 1e-12 * (fabs(A[0]) + fabs(A[1]) + fabs(A[2])))
+            return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                            "%s/constant/dynamicMeshDict: oscillatingLinearMotion amplitude (%g %g %g) has a "
+                            "component normal to the plane of the 2-D mesh: meshlessFoam solves in the plane only",
+                            a->case_dir, A[0], A[1], A[2]);
+        a->amp2[0] = A[m->ax[0]];
+        a->amp2[1] = A[m->ax[1]];
+    }
     char name[128];
     snprintf(name, sizeof name, "alpha.%s", a->ph.name[0]);
     UMP_CALL(read_field(a, tname, name, 1, &a->alpha, err));
@@ -373,7 +389,7 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
         F->re_s = a->ml.re_s;
         F->beta = a->ml.beta_s;
         F->shift = a->ml.shift_s;
-        F->gamma = getenv("FPM_GAMMA") ? atof(getenv("FPM_GAMMA")) : 0;
+        F->gamma = a->ml.gamma_fpm;
         F->p_tol = P->p_tol;
         F->maxit = P->maxit;
         UMP_CALL(fpm_create(F, a->s, nwp, ns, a->wnx, a->wny, &a->fpm, err));
@@ -749,6 +765,11 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         printf("Surface tension: sigma %g is read and not simulated (not implemented by meshlessFoam)\n",
                a.ph.sigma);
     printf("Gravity: (%g %g) in the plane (%c %c)\n\n", a.g2[0], a.g2[1], "xyz"[a.m->ax[0]], "xyz"[a.m->ax[1]]);
+    if (a.mo.on)
+        printf("Container motion (constant/dynamicMeshDict): solidBody oscillatingLinearMotion, displacement "
+               "(%g %g) sin(%g t) m: solved in the container's frame, where gravity becomes g - a(t); the "
+               "fields, the cloud's positions and U are written in that frame (U relative to the container, "
+               "the mesh at its reference position)\n\n", a.amp2[0], a.amp2[1], a.mo.omega);
     double tb = wall_seconds();
     if ((rc = make_particles(&a, tname, err)) != UMP_OK)
         goto done;
@@ -838,6 +859,17 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
             a.prev_x[i] = a.s->x[i];
             a.prev_y[i] = a.s->y[i];
             a.prev_cell[i] = a.s->cell[i];
+        }
+        if (a.mo.on) {
+            /* the container's frame: gravity minus its acceleration at the
+             * end of the step, a = -A w^2 sin(w t) (Eq. 28 differentiated) */
+            double w = a.mo.omega, sn = sin(w * t.value), geff[2];
+            for (int d = 0; d < 2; d++)
+                geff[d] = a.g2[d] + a.amp2[d] * w * w * sn;
+            if (a.fpm)
+                fpm_set_gravity(a.fpm, geff);
+            else
+                mps_set_gravity(a.solver, geff);
         }
         mps_stats st;
         fpm_stats fst;

@@ -195,6 +195,11 @@ void mps_free(mps **pm)
 }
 
 size_t mps_nsolid(const mps *m) { return m->ns; }
+void mps_set_gravity(mps *m, const double g[2])
+{
+    m->P.g[0] = g[0];
+    m->P.g[1] = g[1];
+}
 const double *mps_pressure(const mps *m) { return m->p; }
 const double *mps_density(const mps *m) { return m->nd; }
 const unsigned char *mps_surface(const mps *m) { return m->surf; }

@@ -191,10 +191,10 @@ ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *e
  *              pressureTolerance 1e-8; velocityTolerance 1e-10;
  *              maxIter 5000; cloudName meshlessCloud; maxVelocity 0;
  *              supportRadius 3; weightFunction spline; courantFPM 0.12;
- *              gravityStepFPM 0.24; surfaceRadius 2.1; surfaceBeta 0.95; surfaceShift 0.2;
+ *              gravityStepFPM 0.24; surfaceRadius 3; surfaceBeta 0.8; surfaceShift 0.2; densitySourceFPM 0.02;
  *              wallDistance 0.25; mergeDistance 0.5; holeRadius 0.9;
  *              manageInterval 1; }
- * (the last eleven serve method FPM; reNumberDensity .. restitution and
+ * (the last twelve serve method FPM; reNumberDensity .. restitution and
  * maxCo serve MPS) */
 typedef struct case_meshless {
     char method[16];             /* MPS */
@@ -217,6 +217,7 @@ typedef struct case_meshless {
     double fpm_co, fpm_cg;       /* coefficients of Eqs. 26, 27 */
     double re_s, beta_s;         /* free-surface number density: radius / l0, threshold */
     double shift_s;              /* free surface: centroid offset / l0 */
+    double gamma_fpm;            /* FPM: weight of the density deviation in the PPE source */
     double d_wall, d_min, r_hole;/* particle management / l0 (fpm_manage) */
     long manage_interval;        /* steps between particle managements */
 } case_meshless;
@@ -227,6 +228,23 @@ size_t case_meshless_help(char *buf, size_t len);
 /* Read the meshless sub-dictionary of <case>/system/fvSolution (absent:
  * defaults), with the messages of case_read_umppm. */
 ump_status case_read_meshless(const char *case_dir, case_meshless *u, ump_err *err);
+
+/* meshlessFoam's moving container: constant/dynamicMeshDict with the whole
+ * mesh in solidBody motion, as OpenFOAM v1912 reads it (sloshingTank2D):
+ *   dynamicFvMesh dynamicMotionSolverFvMesh; motionSolver solidBody;
+ *   solidBodyMotionFunction oscillatingLinearMotion;
+ *   oscillatingLinearMotionCoeffs { amplitude (0.05 0 0); omega 4.18879; }
+ * (the motion entries may also sit in solidBodyCoeffs { }). Displacement
+ * amplitude sin(omega t) (Lu et al. 2019, Eq. 28). Absent, or dynamicFvMesh
+ * staticFvMesh: on = 0. Anything else -- another motion function or
+ * solver, a cellZone/cellSet (part of the mesh), topology changes -- is
+ * refused by name. */
+typedef struct case_motion {
+    int on;
+    double amplitude[3];   /* [m] */
+    double omega;          /* [rad/s] */
+} case_motion;
+ump_status case_read_motion(const char *case_dir, case_motion *mo, ump_err *err);
 
 /* interFoam's constant/transportProperties: phases (liquid gas); each
  * phase { transportModel Newtonian; nu; rho; }; sigma. name[0] is the

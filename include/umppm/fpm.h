@@ -94,6 +94,14 @@ double *fpm_wall_normal(fpm *f, int comp);
  * pressure solve breaks down, naming it. */
 ump_status fpm_step(fpm *f, double dt, fpm_stats *st, ump_err *err);
 
+/* The pressure equation alone (verification): rows and MLS fits at the
+ * current positions, the classification of a step, then lap p = src_i on
+ * the fluid particles inside, dp/dn = flux_i on the wet wall points,
+ * p = pd_i (pd NULL: 0) on free-surface particles and dry wall points.
+ * src, flux, pd [n] by particle; the result in fpm_pressure. */
+ump_status fpm_poisson(fpm *f, const double *src, const double *flux, const double *pd, fpm_stats *st,
+                       ump_err *err);
+
 /* The largest dt of Eqs. 26-27 (coefficients co, cg) and of the explicit
  * viscosity, for the current fluid velocities; Eq. 26 takes the speed
  * max(|U|max, u_wave), u_wave the celerity of gravity waves sqrt(|g| H)
@@ -126,6 +134,10 @@ typedef struct fpm_manage_stats {
 } fpm_manage_stats;
 ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char **keep, fpm_manage_stats *ms,
                       ump_err *err);
+
+/* Gravity for the coming steps (a moving container solved in its own
+ * frame: g - a(t), mlapp.c). */
+void fpm_set_gravity(fpm *f, const double g[2]);
 
 size_t fpm_nsolid(const fpm *f);
 size_t fpm_nwall(const fpm *f);

@@ -105,6 +105,10 @@ void mps_free(mps **m);
  * Fails (UMP_ERR_SINGULAR) when a linear solve breaks down, naming it. */
 ump_status mps_step(mps *m, double dt, mps_stats *st, ump_err *err);
 
+/* Gravity for the coming steps (a moving container solved in its own
+ * frame: g - a(t), mlapp.c). */
+void mps_set_gravity(mps *m, const double g[2]);
+
 /* Number of solid particles ([0, nsolid) of the part_set). */
 size_t mps_nsolid(const mps *m);
 /* Tell the solver that fluid particles were removed or reordered by the

@@ -122,6 +122,30 @@ else
     fail=1
 fi
 
+# ---- 3b. the same tank by the finite particle method ---------------------------
+# FPM (method FPM, Lu et al. 2019) keeps water at rest at rest: the wall
+# pressure of the MLS/Neumann system is hydrostatic to rounding (5 %
+# tolerance on p would hide nothing: the check is 0.5 %), and no particle
+# moves faster than 1e-9 m/s after 0.3 s.
+hf=$work/tankFPM
+case_copy hydrostaticTank "$hf"
+foam_set "$hf" system/controlDict endTime 0.3
+foam_set "$hf" system/controlDict writeInterval 0.3
+sed -i '/^meshless/,/^}/c\meshless\n{\n    method FPM;\n}' "$hf/system/fvSolution"
+run_in "$hf" blockMesh blockMesh
+run_in "$hf" setFields setFields
+if run_in "$hf" meshlessFoam "$MESHLESSFOAM" && run_in "$hf" writeCellCentres postProcess -func writeCellCentres -time 0.3; then
+    err=$(paste <(field_values "$hf/0.3/C") <(field_values "$hf/0.3/p") | awk '
+        $1 < 0.01 && $2 < 0.2 { want = 1000 * 9.81 * (0.2975 - $2); e = ($4 - want) / want;
+            if (e < 0) e = -e; if (e > m) m = e; n++ }
+        END { if (n < 5) print "nan"; else printf "%.5f", m }')
+    check_range "FPM wall pressure, largest relative error to rho g (h - l0/2 - y) (0.1 to 0.3 m deep)" "$err" 0 0.005
+    umax=$(grep '^Velocity:' "$hf/log.meshlessFoam" | tail -n 1 | sed 's/.*max \([^ ]*\) m\/s.*/\1/')
+    check_range "FPM largest |U| at 0.3 s (m/s)" "$umax" 0 1e-9
+else
+    fail=1
+fi
+
 # ---- 4. refusals ---------------------------------------------------------------
 # expect_refusal NAME PATTERN: meshlessFoam in $r fails before the first
 # step with PATTERN in its error
@@ -169,6 +193,17 @@ if [ -d "$c/constant/polyMesh" ]; then
     fresh
     sed -i 's/^phases .*/phases (water oil air);/' "$r/constant/transportProperties"
     expect_refusal threePhases "two phases"
+    # moving meshes: the container in rigid oscillation is read (the run
+    # logs it), a deforming mesh or another motion is refused by name
+    fresh
+    printf 'FoamFile { version 2.0; format ascii; class dictionary; object dynamicMeshDict; }\ndynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolver solidBody;\nsolidBodyMotionFunction oscillatingRotatingMotion;\n' > "$r/constant/dynamicMeshDict"
+    expect_refusal rotatingContainer "oscillatingLinearMotion only"
+    fresh
+    printf 'FoamFile { version 2.0; format ascii; class dictionary; object dynamicMeshDict; }\ndynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolver displacementLaplacian;\n' > "$r/constant/dynamicMeshDict"
+    expect_refusal meshDeformation "mesh deformation"
+    fresh
+    printf 'FoamFile { version 2.0; format ascii; class dictionary; object dynamicMeshDict; }\ndynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolver solidBody;\ncellZone tank;\nsolidBodyMotionFunction oscillatingLinearMotion;\noscillatingLinearMotionCoeffs { amplitude (0.01 0 0); omega 3; }\n' > "$r/constant/dynamicMeshDict"
+    expect_refusal partOfMesh "part of the mesh"
     # the gas and sigma are named in the log of a normal run
     if grep -q 'air (nu .*) is not simulated' "$c/log.meshlessFoam" &&
         grep -q 'sigma 0.07 is read and not simulated' "$c/log.meshlessFoam"; then

@@ -8,10 +8,15 @@
  * with and without the target among the samples), for both weights of
  * Eqs. 4 and 5. Convergence: on a smooth sine field the observed order of
  * the gradient and of the Laplacian as the spacing halves, on jittered
- * lattices (the particles of a flow are never on a lattice).
+ * lattices (the particles of a flow are never on a lattice). The particle
+ * pressure equation (fpm_poisson: the rows of Eqs. 24-25 as a step builds
+ * them) on a manufactured solution in a tank with Neumann walls on three
+ * sides and the free surface on top: converging, with the observed order.
  */
 #include "testutil.h"
+#include "umppm/fpm.h"
 #include "umppm/mls.h"
+#include "umppm/particles.h"
 #include "umppm/ump.h"
 
 enum { NMAX = 512 };
@@ -217,12 +222,107 @@ static void test_sine_convergence(void **state)
         }
 }
 
+/* The manufactured pressure: p = cos(pi x) (1.2 - y)^2 in the unit tank:
+ * dp/dx = 0 on the side walls, dp/dn = -dp/dy = 2.4 cos(pi x) on the floor. */
+static double pm_exact(double x, double y) { return cos(M_PI * x) * (1.2 - y) * (1.2 - y); }
+static double pm_lap(double x, double y)
+{
+    return cos(M_PI * x) * (2 - M_PI * M_PI * (1.2 - y) * (1.2 - y));
+}
+
+/* Max |p - p_exact| / max |p_exact| over the fluid particles for spacing
+ * l = 1/m: fluid on a jittered lattice filling the unit square, wall points
+ * on the floor and the side walls (outward normals), ghosts behind them,
+ * the top row the free surface (p = p_exact there). */
+static double ppe_error(int m, size_t *nsurf)
+{
+    const double l = 1.0 / m;
+    part_set *s = NULL;
+    ump_err err;
+    assert_int_equal(part_create(1024, &s, &err), UMP_OK);
+    double *wnx = calloc((size_t)(3 * m + 8), sizeof *wnx), *wny = calloc((size_t)(3 * m + 8), sizeof *wny);
+    size_t nw = 0;
+    for (int i = 0; i < m; i++) { /* floor */
+        part_add(s, (i + 0.5) * l, 0, 0, 0, 0, 0, NULL, &err);
+        wnx[nw] = 0, wny[nw++] = -1;
+    }
+    for (int j = 0; j < m; j++) { /* side walls */
+        part_add(s, 0, (j + 0.5) * l, 0, 0, 0, 0, NULL, &err);
+        wnx[nw] = -1, wny[nw++] = 0;
+        part_add(s, 1, (j + 0.5) * l, 0, 0, 0, 0, NULL, &err);
+        wnx[nw] = 1, wny[nw++] = 0;
+    }
+    for (int i = -4; i < m + 4; i++) /* ghosts: the lattice behind the walls */
+        for (int j = -4; j < m; j++)
+            if (i < 0 || i >= m || j < 0)
+                part_add(s, (i + 0.5) * l, (j + 0.5) * l, 0, 0, 0, 0, NULL, &err);
+    size_t ns = s->n;
+    for (int i = 0; i < m; i++)
+        for (int j = 0; j < m; j++) {
+            double jx = (i > 0 && i < m - 1 && j > 0 && j < m - 1) ? tu_rnd_in(-0.1, 0.1) * l : 0;
+            double jy = (i > 0 && i < m - 1 && j > 0 && j < m - 1) ? tu_rnd_in(-0.1, 0.1) * l : 0;
+            part_add(s, (i + 0.5) * l + jx, (j + 0.5) * l + jy, 0, 0, 0, 0, NULL, &err);
+        }
+    fpm_params P = {.l0 = l, .h = 3 * l, .weight = MLS_WFUN_SPLINE, .rho = 1, .nu = 0, .g = {0, 0},
+                    .re_s = 3.0, .beta = 0.8, .shift = 0.2, .gamma = 0, .p_tol = 1e-12, .maxit = 10000};
+    fpm *f = NULL;
+    assert_int_equal(fpm_create(&P, s, nw, ns, wnx, wny, &f, &err), UMP_OK);
+    size_t n = s->n;
+    double *src = calloc(n, sizeof *src), *pd = calloc(n, sizeof *pd);
+    for (size_t i = 0; i < n; i++) {
+        pd[i] = pm_exact(s->x[i], s->y[i]);
+        src[i] = i < nw ? (wny[i] < 0 ? 2.4 * cos(M_PI * s->x[i]) : 0) : pm_lap(s->x[i], s->y[i]);
+    }
+    fpm_stats st;
+    if (fpm_poisson(f, src, src, pd, &st, &err) != UMP_OK)
+        fail_msg("fpm_poisson: %s", err.msg);
+    assert_true(st.pres.converged == 1);
+    const double *p = fpm_pressure(f);
+    const unsigned char *fs = fpm_surface(f);
+    double emax = 0, pmax = 0;
+    *nsurf = 0;
+    for (size_t i = ns; i < n; i++) {
+        double e = pm_exact(s->x[i], s->y[i]);
+        emax = fmax(emax, fabs(p[i] - e));
+        pmax = fmax(pmax, fabs(e));
+        *nsurf += fs[i];
+        /* the free surface is the top row, and only it */
+        if ((s->y[i] > 1 - l) != (fs[i] != 0))
+            fail_msg("m %d: particle at (%g %g) free surface %d, n/n0 %g", m, s->x[i], s->y[i], fs[i], fpm_density(f)[i]);
+    }
+    fpm_free(&f);
+    part_free(&s);
+    free(wnx);
+    free(wny);
+    free(src);
+    free(pd);
+    return emax / pmax;
+}
+
+static void test_ppe_manufactured(void **state)
+{
+    (void)state;
+    double e[3];
+    int ms[3] = {16, 32, 64};
+    for (int k = 0; k < 3; k++) {
+        size_t ns;
+        e[k] = ppe_error(ms[k], &ns);
+        assert_int_equal((int)ns, ms[k]);
+    }
+    double order = log2(e[0] / e[2]) / 2;
+    print_message("particle PPE, Neumann walls, free surface: max error %.3g (16^2), %.3g (32^2), %.3g (64^2); "
+                  "order %.2f\n", e[0], e[1], e[2], order);
+    assert_true(order >= 1.0);
+    assert_true(e[2] < 0.01);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_weight_functions),
         cmocka_unit_test(test_quadratic_exact),
         cmocka_unit_test(test_sine_convergence),
+        cmocka_unit_test(test_ppe_manufactured),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
