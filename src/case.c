@@ -1115,10 +1115,15 @@ ump_status case_read_motion(const char *case_dir, case_motion *mo, ump_err *err)
         e = foam_dict_find(d, "solver", 0);
     if (e && !e->dict && e->ntok > 0 && e->tok[0].type == FOAM_TOK_WORD)
         solver = e->tok[0].v.str;
+    if (solver && strcmp(solver, "displacementLaplacian") == 0) {
+        mo->deform = 1; /* the walls' motion: 0/pointDisplacement (mlapp.c) */
+        goto done;
+    }
     if (!solver || strcmp(solver, "solidBody") != 0) {
         rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s: motionSolver %s: meshlessFoam implements the solidBody motion "
-                      "of the whole mesh only (a moving container); mesh deformation (displacementLaplacian, "
-                      "wave makers) is not implemented in this version; use interFoam", path,
+                      "of the whole mesh (a moving container) and wall patches moved by displacementLaplacian's "
+                      "0/pointDisplacement (wave makers); other mesh motion solvers are not implemented; use "
+                      "interFoam", path,
                       solver ? solver : "(none)");
         goto done;
     }

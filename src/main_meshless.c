@@ -29,7 +29,8 @@ static void usage(FILE *fp)
             "  -case <dir>       Specify case directory to use (instead of the cwd)\n"
             "  -version          Print the version and exit\n"
             "  -help             Print this usage and the meshless options, then exit\n"
-            "\nFree-surface flow on particles alone (fully implicit MPS), run in an\n"
+            "\nFree-surface flow on particles alone (method MPS: fully implicit MPS;\n"
+            "method FPM: the finite particle method), run in an\n"
             "interFoam (laminar) case directory as it is: the wall patches of\n"
             "constant/polyMesh are the container, 0/alpha.<liquid> the initial liquid.\n\n");
 }
@@ -58,7 +59,7 @@ static void banner(int argc, char **argv, const char *case_dir)
     strftime(clock, sizeof clock, "%H:%M:%S", &tmv);
     const char *abs = realpath(case_dir, cwd) ? cwd : case_dir;
     printf("/*---------------------------------------------------------------------------*\\\n"
-           "| meshlessFoam: free-surface flow on particles (fully implicit MPS)           |\n"
+           "| meshlessFoam: free-surface flow on particles (implicit MPS, finite particle)|\n"
            "| Version:   %-65s|\n"
            "| Reads and writes OpenFOAM (v1912) case directories                          |\n"
            "\\*---------------------------------------------------------------------------*/\n",

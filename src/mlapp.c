@@ -20,8 +20,12 @@
  *   system/controlDict     deltaT, adjustTimeStep (the meshless maxCo on
  *                          the particle spacing), writes, purgeWrite;
  *   system/fvSolution      the meshless sub-dictionary (case.h).
- * Refused by name before the first step: moving walls (a wall patch whose
- * U is not zero), inflow (a fixed non-zero U on an open patch), slip,
+ *   constant/dynamicMeshDict  a container in rigid sway (solidBody
+ *                          oscillatingLinearMotion: solved in its frame) or
+ *                          wall patches moved by 0/pointDisplacement
+ *                          (displacementLaplacian: wave makers), case.h;
+ * Refused by name before the first step: moving walls given by U (a wall
+ * patch whose U is not zero), inflow (a fixed non-zero U on an open patch), slip,
  * symmetry, cyclic and wedge patches, gravity out of the plane, 3-D meshes,
  * a restart time without the particle cloud.
  *
@@ -42,6 +46,7 @@
 #include "umppm/fieldio.h"
 #include "umppm/foam.h"
 #include "umppm/fpm.h"
+#include "umppm/function1.h"
 #include "umppm/mesh2d.h"
 #include "umppm/mlseed.h"
 #include "umppm/mps.h"
@@ -82,6 +87,12 @@ typedef struct mlapp {
     double g2[2];                    /* gravity in the plane */
     case_motion mo;                  /* a moving container (case.h) */
     double amp2[2];                  /* its amplitude in the plane */
+    double vframe[2];                /* its velocity at the time being written */
+    f1 **pmove;                      /* [npatches] displacement of a moving wall patch, NULL: fixed */
+    int nmoving;                     /* patches that move */
+    int *solid_patch;                /* [nsolid] the patch carrying each solid particle */
+    double *sx0, *sy0;               /* [nsolid] their positions at displacement 0 */
+    double *pdisp, *pvel;            /* [2 npatches] displacement, velocity at the last time */
     double *prev_x, *prev_y;         /* fluid positions before the step [cap] */
     ump_idx *prev_cell;
     unsigned char *keep;
@@ -109,6 +120,15 @@ static void mlapp_free(mlapp *a)
     mps_free(&a->solver);
     fpm_free(&a->fpm);
     free(a->wall_face);
+    if (a->pmove)
+        for (int p = 0; p < a->pm->npatches; p++)
+            f1_free(&a->pmove[p]);
+    free(a->pmove);
+    free(a->solid_patch);
+    free(a->sx0);
+    free(a->sy0);
+    free(a->pdisp);
+    free(a->pvel);
     free(a->wnx);
     free(a->wny);
     part_free(&a->s);
@@ -212,6 +232,96 @@ static ump_status check_boundary(mlapp *a, ump_err *err)
     return UMP_OK;
 }
 
+/* Wall patches moved by 0/pointDisplacement (case_motion deform): a wall
+ * patch with uniformFixedValue moves rigidly by its uniformValue (a
+ * Function1 of time: a wave maker's table); fixedValue (0 0 0),
+ * zeroGradient, slip or fixedNormalSlip leave it in place (its points may
+ * slide in OpenFOAM's mesh motion; the wall does not move). Anything else
+ * is refused by name. Open patches are not read (no particles there). */
+static ump_status read_wall_motion(mlapp *a, const char *tname, ump_err *err)
+{
+    char path[4400];
+    snprintf(path, sizeof path, "%s/%s/pointDisplacement", a->case_dir, tname);
+    UMP_CHECK(foam_file_exists(path), err, UMP_ERR_INPUT,
+              "%s: missing: constant/dynamicMeshDict has motionSolver displacementLaplacian, whose wall motion "
+              "meshlessFoam reads from the point displacement", path);
+    foam_file *f = NULL;
+    UMP_CALL(foam_file_read(path, &f, err));
+    ump_status rc = UMP_OK;
+    const pmesh *pm = a->pm;
+    a->pmove = ump_alloc_array((size_t)pm->npatches + 1, sizeof *a->pmove);
+    a->pdisp = ump_alloc_array(2 * (size_t)pm->npatches + 2, sizeof *a->pdisp);
+    a->pvel = ump_alloc_array(2 * (size_t)pm->npatches + 2, sizeof *a->pvel);
+    const foam_entry *bf = foam_dict_find(f->dict, "boundaryField", 0);
+    if (!a->pmove || !a->pdisp || !a->pvel) {
+        rc = UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
+        goto done;
+    }
+    for (int p = 0; p < pm->npatches; p++) {
+        a->pmove[p] = NULL;
+        a->pdisp[2 * p] = a->pdisp[2 * p + 1] = a->pvel[2 * p] = a->pvel[2 * p + 1] = 0;
+    }
+    if (!bf || !bf->dict) {
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: no boundaryField dictionary", path);
+        goto done;
+    }
+    for (int p = 0; p < pm->npatches && rc == UMP_OK; p++) {
+        if (!a->wall_patch[p])
+            continue;
+        const char *name = pm->patch[p].name;
+        const foam_entry *e = foam_dict_find(bf->dict, name, 0);
+        if (!e || !e->dict) {
+            rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: boundaryField has no dictionary for the wall patch '%s'", path,
+                          name);
+            break;
+        }
+        const char *type = NULL;
+        if ((rc = foam_get_word(e->dict, "type", &type, err)) != UMP_OK)
+            break;
+        if (strcmp(type, "uniformFixedValue") == 0) {
+            char what[5000];
+            snprintf(what, sizeof what, "%s: patch '%s': uniformValue", path, name);
+            if ((rc = f1_read(e->dict, "uniformValue", 3, F1_PATCH, what, &a->pmove[p], err)) != UMP_OK)
+                break;
+            a->nmoving++;
+        } else if (strcmp(type, "fixedValue") == 0) {
+            /* value uniform (0 0 0): the word, then three zero numbers */
+            const foam_entry *ve = foam_dict_find(e->dict, "value", 0);
+            int zero = ve && !ve->dict && ve->ntok >= 1 && ve->tok[0].type == FOAM_TOK_WORD &&
+                       strcmp(ve->tok[0].v.str, "uniform") == 0, nnum = 0;
+            for (size_t k = 1; zero && ve && k < ve->ntok; k++) {
+                const foam_token *tk = &ve->tok[k];
+                if (tk->type == FOAM_TOK_LABEL) {
+                    zero = tk->v.label == 0;
+                    nnum++;
+                } else if (tk->type == FOAM_TOK_SCALAR) {
+                    zero = tk->v.scalar == 0;
+                    nnum++;
+                } else {
+                    zero = tk->type == FOAM_TOK_PUNCT;
+                }
+            }
+            zero = zero && nnum == 3;
+            if (!zero) {
+                rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: patch '%s': fixedValue point displacement other "
+                              "than uniform (0 0 0): a wall moves in meshlessFoam by uniformFixedValue (a "
+                              "Function1 of time) only", e->file, e->line, name);
+                break;
+            }
+        } else if (strcmp(type, "zeroGradient") != 0 && strcmp(type, "slip") != 0 &&
+                   strcmp(type, "fixedNormalSlip") != 0) {
+            rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: patch '%s': point displacement %s is not implemented "
+                          "by meshlessFoam (wall patches: uniformFixedValue to move rigidly; fixedValue (0 0 0), "
+                          "zeroGradient, slip or fixedNormalSlip to stay); use interFoam", e->file, e->line,
+                          name, type);
+            break;
+        }
+    }
+done:
+    foam_file_free(&f);
+    return rc;
+}
+
 static ump_status read_case(mlapp *a, const char *tname, ump_err *err)
 {
     printf("Reading transportProperties\n\n");
@@ -249,6 +359,12 @@ static ump_status read_case(mlapp *a, const char *tname, ump_err *err)
             return UMP_FAIL(err, UMP_ERR_INPUT, "%s/%s/%s: cell %ld has the volume fraction %g, outside [0, 1]",
                             a->case_dir, tname, name, (long)c, a->alpha->internal[c]);
     UMP_CALL(check_boundary(a, err));
+    if (a->mo.deform) {
+        UMP_CHECK(a->pm->npatches <= 64, err, UMP_ERR_UNSUPPORTED,
+                  "%s/constant/polyMesh/boundary: %d patches: meshlessFoam moves walls in meshes of at most 64 "
+                  "patches", a->case_dir, a->pm->npatches);
+        UMP_CALL(read_wall_motion(a, tname, err));
+    }
     /* p and p_rgh: calculated (their values are the particles'; interFoam's
      * boundary conditions on p_rgh are not read: the pressure of the
      * particles needs none) */
@@ -321,12 +437,30 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
         vc[c] = a->U->internal[3 * (size_t)c + (size_t)m->ax[1]];
     }
     mlseed_stats ss;
+    ump_idx *sface = NULL;
     ump_status rc = mlseed_build(m, a->alpha->internal, uc, vc, a->wall_patch, l0, wall_depth, thick, a->s,
-                                 &a->kinds, NULL, &ss, err);
+                                 &a->kinds, a->nmoving ? &sface : NULL, &ss, err);
     free(uc);
     free(vc);
     UMP_CALL(rc);
     size_t ns = nwp + ss.nwall + ss.ndummy;
+    if (a->nmoving) {
+        /* the patch of every solid particle and its place at displacement 0 */
+        a->solid_patch = ump_alloc_array(ns + 1, sizeof *a->solid_patch);
+        a->sx0 = ump_alloc_array(ns + 1, sizeof *a->sx0);
+        a->sy0 = ump_alloc_array(ns + 1, sizeof *a->sy0);
+        if (!a->solid_patch || !a->sx0 || !a->sy0) {
+            free(sface);
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
+        }
+        for (size_t i = 0; i < ns; i++) {
+            ump_idx f = i < nwp ? a->wall_face[i] : sface[i - nwp];
+            a->solid_patch[i] = f >= 0 ? m->face_patch[f] : -1;
+            a->sx0[i] = a->s->x[i];
+            a->sy0[i] = a->s->y[i];
+        }
+        free(sface);
+    }
     /* a restart: the fluid particles of the start time's cloud */
     char dir[4400], cdir[4600];
     snprintf(dir, sizeof dir, "%s/%s", a->case_dir, tname);
@@ -483,8 +617,8 @@ static ump_status fill_fields(mlapp *a, ump_err *err)
         U[0] = U[1] = U[2] = 0;
         double p = 0;
         if (k > 0) {
-            U[m->ax[0]] = a->su[c] / k;
-            U[m->ax[1]] = a->sv[c] / k;
+            U[m->ax[0]] = a->su[c] / k + a->vframe[0];
+            U[m->ax[1]] = a->sv[c] / k + a->vframe[1];
             p = a->sp[c] / k;
         }
         double C[3];
@@ -516,6 +650,10 @@ static ump_status fill_fields(mlapp *a, ump_err *err)
 
 static ump_status write_time(mlapp *a, const rt_time *t, ump_err *err)
 {
+    /* velocities are written in the absolute frame, as interFoam's (the
+     * container's velocity A w cos(w t) added; positions stay in its frame) */
+    for (int d = 0; d < 2; d++)
+        a->vframe[d] = a->mo.on ? a->amp2[d] * a->mo.omega * cos(a->mo.omega * t->value) : 0;
     UMP_CALL(fill_fields(a, err));
     fio_timedir td;
     fio_format fmt = {a->ctl.write_binary, a->ctl.write_precision, a->ctl.write_compression};
@@ -534,8 +672,8 @@ static ump_status write_time(mlapp *a, const rt_time *t, ump_err *err)
         size_t i = ns + k;
         mesh_to3d(m, s->x[i], s->y[i], pos + 3 * k);
         vel[3 * k + (size_t)m->normal] = 0;
-        vel[3 * k + (size_t)m->ax[0]] = s->u[i];
-        vel[3 * k + (size_t)m->ax[1]] = s->v[i];
+        vel[3 * k + (size_t)m->ax[0]] = s->u[i] + a->vframe[0];
+        vel[3 * k + (size_t)m->ax[1]] = s->v[i] + a->vframe[1];
     }
     fld_field *F[4] = {a->alpha, a->U, a->prgh, a->p};
     for (int q = 0; q < 4 && rc == UMP_OK; q++)
@@ -663,6 +801,50 @@ static ump_status relocate(mlapp *a, size_t *left, size_t *walled, size_t *lost,
     return UMP_OK;
 }
 
+/* Wall patches moved by their point displacement (read_wall_motion): at
+ * time t the solid particles of a moving patch sit at their reference
+ * place + d(t), with the step's mean velocity (d(t) - d(t - dt))/dt and,
+ * for FPM's Eq. 25, the acceleration from the change of that velocity.
+ * first: the velocity before the run is taken as that of the first step. */
+static void move_walls(mlapp *a, double t, double dt, int first)
+{
+    const mesh2d *m = a->m;
+    const int np = a->pm->npatches;
+    double acc[2 * 64 + 2], *ap = np <= 64 ? acc : NULL;
+    if (!ap)
+        return; /* (more than 64 patches: bounded below at read time) */
+    for (int p = 0; p < np; p++) {
+        ap[2 * p] = ap[2 * p + 1] = 0;
+        if (!a->pmove[p])
+            continue;
+        double d3[3], d3o[3];
+        f1_value(a->pmove[p], t, d3);
+        f1_value(a->pmove[p], t - dt, d3o);
+        for (int k = 0; k < 2; k++) {
+            double d = d3[m->ax[k]], v = (d - d3o[m->ax[k]]) / dt;
+            ap[2 * p + k] = first ? 0 : (v - a->pvel[2 * p + k]) / dt;
+            a->pdisp[2 * p + k] = d;
+            a->pvel[2 * p + k] = v;
+        }
+    }
+    part_set *s = a->s;
+    size_t ns = ml_nsolid(a), nw = a->fpm ? fpm_nwall(a->fpm) : 0;
+    double *wacc = a->fpm ? fpm_wall_accel(a->fpm) : NULL;
+    for (size_t i = 0; i < ns; i++) {
+        int p = a->solid_patch[i];
+        if (p < 0 || !a->pmove[p])
+            continue;
+        s->x[i] = a->sx0[i] + a->pdisp[2 * p];
+        s->y[i] = a->sy0[i] + a->pdisp[2 * p + 1];
+        s->u[i] = a->pvel[2 * p];
+        s->v[i] = a->pvel[2 * p + 1];
+        if (i < nw) {
+            wacc[2 * i] = ap[2 * p];
+            wacc[2 * i + 1] = ap[2 * p + 1];
+        }
+    }
+}
+
 /* FPM: particle management (fpm_manage): merged particles go, inserted
  * ones are located on the mesh from a neighbour's cell (one whose walk
  * leaves the mesh is dropped again). */
@@ -765,14 +947,33 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         printf("Surface tension: sigma %g is read and not simulated (not implemented by meshlessFoam)\n",
                a.ph.sigma);
     printf("Gravity: (%g %g) in the plane (%c %c)\n\n", a.g2[0], a.g2[1], "xyz"[a.m->ax[0]], "xyz"[a.m->ax[1]]);
+    if (a.nmoving)
+        for (int p = 0; p < a.pm->npatches; p++)
+            if (a.pmove[p])
+                printf("Moving wall: patch '%s' moves rigidly by its point displacement (0/pointDisplacement "
+                       "uniformFixedValue, a %s of time); the mesh stays in place (particles need no mesh "
+                       "motion): the fields are written on the mesh at its start position\n",
+                       a.pm->patch[p].name, f1_kind_name(a.pmove[p]->kind));
     if (a.mo.on)
         printf("Container motion (constant/dynamicMeshDict): solidBody oscillatingLinearMotion, displacement "
-               "(%g %g) sin(%g t) m: solved in the container's frame, where gravity becomes g - a(t); the "
-               "fields, the cloud's positions and U are written in that frame (U relative to the container, "
-               "the mesh at its reference position)\n\n", a.amp2[0], a.amp2[1], a.mo.omega);
+               "(%g %g) sin(%g t) m: solved in the container's frame, where gravity becomes g - a(t); "
+               "positions (cloud and mesh) are written in that frame (the mesh at its reference position), "
+               "velocities in the absolute frame as interFoam's (0/U is absolute: a liquid at rest starts at "
+               "-A w relative to the container)\n\n", a.amp2[0], a.amp2[1], a.mo.omega);
     double tb = wall_seconds();
     if ((rc = make_particles(&a, tname, err)) != UMP_OK)
         goto done;
+    if (a.mo.on) {
+        /* 0/U and a written cloud hold absolute velocities (interFoam's):
+         * into the container's frame, u - A w cos(w t0). A fluid at rest
+         * thus starts at -A w relative to the container that sways from
+         * x = 0 at speed A w, as in interFoam's impulsive start */
+        double v0[2] = {a.amp2[0] * a.mo.omega * cos(a.mo.omega * t0), a.amp2[1] * a.mo.omega * cos(a.mo.omega * t0)};
+        for (size_t i = ml_nsolid(&a); i < a.s->n; i++) {
+            a.s->u[i] -= v0[0];
+            a.s->v[i] -= v0[1];
+        }
+    }
     printf("Set-up: %.3g s\n", wall_seconds() - tb);
     printf("Threads: %d (OpenMP; set OMP_NUM_THREADS to change)\n\n",
 #ifdef _OPENMP
@@ -860,6 +1061,8 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
             a.prev_y[i] = a.s->y[i];
             a.prev_cell[i] = a.s->cell[i];
         }
+        if (a.nmoving)
+            move_walls(&a, t.value, t.delta_t, step == 0);
         if (a.mo.on) {
             /* the container's frame: gravity minus its acceleration at the
              * end of the step, a = -A w^2 sin(w t) (Eq. 28 differentiated) */

@@ -368,8 +368,17 @@ static ump_status viscous(mps *m, double dt, mps_stats *st, ump_err *err)
     UMP_CALL(lsolve_rows_setup(m->kry, &A, LSOLVE_PC_JACOBI, err));
     for (int d = 0; d < 2; d++) {
         double *vel = d ? s->v : s->u;
+        const pnbr *R = &m->nb;
+        const double re = P->re_lap * P->l0;
+#pragma omp parallel for schedule(static)
         for (size_t k = 0; k < nf; k++) {
-            m->b[k] = vel[ns + k] + dt * P->g[d]; /* Eq. 14 right-hand side */
+            size_t i = ns + k;
+            m->b[k] = vel[i] + dt * P->g[d]; /* Eq. 14 right-hand side */
+            /* the known velocities of the solid particles (no-slip on a
+             * moving wall; zero on a fixed one) */
+            for (size_t q = R->off[i]; q < R->off[i + 1]; q++)
+                if (R->j[q] < ns)
+                    m->b[k] += c * mps_weight(R->r[q], re) * vel[R->j[q]];
             m->x[k] = m->b[k];
         }
         UMP_CALL(lsolve_rows_cg(m->kry, &A, m->b, m->x, P->u_tol, P->maxit, &st->visc[d], err));

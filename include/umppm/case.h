@@ -235,12 +235,17 @@ ump_status case_read_meshless(const char *case_dir, case_meshless *u, ump_err *e
  *   solidBodyMotionFunction oscillatingLinearMotion;
  *   oscillatingLinearMotionCoeffs { amplitude (0.05 0 0); omega 4.18879; }
  * (the motion entries may also sit in solidBodyCoeffs { }). Displacement
- * amplitude sin(omega t) (Lu et al. 2019, Eq. 28). Absent, or dynamicFvMesh
- * staticFvMesh: on = 0. Anything else -- another motion function or
- * solver, a cellZone/cellSet (part of the mesh), topology changes -- is
- * refused by name. */
+ * amplitude sin(omega t) (Lu et al. 2019, Eq. 28). Or wall patches moved by
+ * the point displacement (a wave maker, as OpenFOAM's waveMakerPiston):
+ *   dynamicFvMesh dynamicMotionSolverFvMesh;
+ *   motionSolver displacementLaplacian;   (or solver ...; deform = 1)
+ * Absent, or dynamicFvMesh staticFvMesh: on = deform = 0. Anything else --
+ * another motion function or solver, a cellZone/cellSet (part of the
+ * mesh), topology changes -- is refused by name. */
 typedef struct case_motion {
-    int on;
+    int on;                /* the whole container sways */
+    int deform;            /* motionSolver displacementLaplacian: wall
+                              patches move as 0/pointDisplacement says (mlapp.c) */
     double amplitude[3];   /* [m] */
     double omega;          /* [rad/s] */
 } case_motion;

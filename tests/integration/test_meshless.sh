@@ -199,8 +199,8 @@ if [ -d "$c/constant/polyMesh" ]; then
     printf 'FoamFile { version 2.0; format ascii; class dictionary; object dynamicMeshDict; }\ndynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolver solidBody;\nsolidBodyMotionFunction oscillatingRotatingMotion;\n' > "$r/constant/dynamicMeshDict"
     expect_refusal rotatingContainer "oscillatingLinearMotion only"
     fresh
-    printf 'FoamFile { version 2.0; format ascii; class dictionary; object dynamicMeshDict; }\ndynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolver displacementLaplacian;\n' > "$r/constant/dynamicMeshDict"
-    expect_refusal meshDeformation "mesh deformation"
+    printf 'FoamFile { version 2.0; format ascii; class dictionary; object dynamicMeshDict; }\ndynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolver velocityComponentLaplacian;\n' > "$r/constant/dynamicMeshDict"
+    expect_refusal meshMotionSolver "other mesh motion solvers"
     fresh
     printf 'FoamFile { version 2.0; format ascii; class dictionary; object dynamicMeshDict; }\ndynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolver solidBody;\ncellZone tank;\nsolidBodyMotionFunction oscillatingLinearMotion;\noscillatingLinearMotionCoeffs { amplitude (0.01 0 0); omega 3; }\n' > "$r/constant/dynamicMeshDict"
     expect_refusal partOfMesh "part of the mesh"
