@@ -496,16 +496,19 @@ static ump_status pressure(fpm *f, double dt, fpm_stats *st, ump_err *err)
              * departure, docs/METHOD.md 11, off by default) */
             double div = row_sum(f, i, f->cx, f->sx[i], f->ut) + row_sum(f, i, f->cy, f->sy[i], f->vt);
             f->src[i] = rho / dt * div;
-            /* the density term only where the kernel of the number density
-             * does not reach the free surface (there n < n0 by geometry, not
-             * by a cavity: at rest, the rows below the surface would move) */
+            /* the density term; where the kernel of the number density
+             * reaches the free surface, n < n0 by geometry, not by a cavity
+             * (at rest the rows below the surface would move): there only
+             * compression (n > n0) counts */
             if (f->P.gamma > 0) {
                 int near = 0;
                 const pnbr *R = &f->nb;
                 for (size_t q = R->off[i]; q < R->off[i + 1] && !near; q++)
                     near = f->kind[R->j[q]] == FPM_FLUID && f->surf[R->j[q]] && R->r[q] < rs;
-                if (!near)
-                    f->src[i] -= f->P.gamma * rho / (dt * dt) * (f->nd[i] - 1);
+                double dev = f->nd[i] - 1;
+                if (near && dev < 0)
+                    dev = 0;
+                f->src[i] -= f->P.gamma * rho / (dt * dt) * dev;
             }
         } else {
             /* Eq. 25: dp/dn = rho n.(g - a_w) + mu n.lap u */
