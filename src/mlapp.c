@@ -852,7 +852,6 @@ static ump_status manage(mlapp *a, fpm_manage_stats *ms, ump_err *err)
 {
     fpm_manage_params mg = {a->ml.d_wall, a->ml.d_min, a->ml.r_hole};
     const unsigned char *keep;
-    size_t nb = a->s->n;
     UMP_CALL(fpm_manage(a->fpm, &mg, &keep, ms, err));
     size_t n1 = a->s->n; /* with the inserted ones */
     if (ms->merged > 0) {
@@ -860,7 +859,6 @@ static ump_status manage(mlapp *a, fpm_manage_stats *ms, ump_err *err)
         fpm_compact(a->fpm, keep, n1);
     }
     size_t first = a->s->n - ms->inserted, drop = 0;
-    (void)nb;
     UMP_CALL(reserve_prev(a, err));
     for (size_t i = first; i < a->s->n; i++) {
         double x = a->s->x[i], y = a->s->y[i];
