@@ -931,6 +931,9 @@ static const case_option meshless_options[] = {
      "FPM: pairs closer than this / l0 are merged; 0: off", ML_FIELD(d_min)},
     {"holeRadius", CASE_OPT_SCALAR, "0.9", 0.9, NULL, NULL, UM_GE(0),
      "FPM: a particle is inserted in Voronoi holes of radius > this / l0; 0: off", ML_FIELD(r_hole)},
+    {"particleShifting", CASE_OPT_SCALAR, "0", 0, NULL, NULL, ML_CLOSED(0, 10),
+     "FPM: particle shifting coefficient A (dr = -A (r_s/2) |u| dt grad C, Skillen et al. 2013); 0: off",
+     ML_FIELD(shift_a)},
     {"manageInterval", CASE_OPT_LABEL, "1", 1, NULL, NULL, UM_GE(1),
      "FPM: steps between particle managements (merge, insert)", ML_FIELD(manage_interval)},
 };

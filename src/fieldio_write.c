@@ -741,6 +741,20 @@ ump_status fio_write_phi(const char *dir, const char *location, const pmesh *pm,
     return write_file(dir, "phi", fmt, put_phi, &j, NULL, err);
 }
 
+ump_status fio_write_text(const char *dir, const char *name, const char *text, size_t len, ump_err *err)
+{
+    char path[4200];
+    int n = snprintf(path, sizeof path, "%s/%s", dir, name);
+    UMP_CHECK(n > 0 && (size_t)n < sizeof path, err, UMP_ERR_INPUT, "%s: path too long", dir);
+    FILE *fp = fopen(path, "wb");
+    if (!fp)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot open for writing: %s", path, strerror(errno));
+    int bad = fwrite(text, 1, len, fp) != len;
+    bad |= fclose(fp) != 0;
+    UMP_CHECK(!bad, err, UMP_ERR_IO, "%s: write failed", path);
+    return UMP_OK;
+}
+
 ump_status fio_write_uniform_time(const char *dir, const char *location,
                                   double value, const char *name, long index,
                                   double deltaT, double deltaT0,

@@ -1479,6 +1479,19 @@ ump_status foam_file_read(const char *path, foam_file **out, ump_err *err)
     return rc;
 }
 
+ump_status foam_read_text(const char *path, char **buf, size_t *len, ump_err *err)
+{
+    *buf = NULL;
+    *len = 0;
+    char *real = path ? foam_resolve_gz(path) : NULL;
+    if (!real)
+        return FOAM_FAIL(err, UMP_ERR_IO, "cannot open %s (nor %s.gz)", path ? path : "(null path)",
+                         path ? path : "");
+    ump_status rc = foam_read_whole_file(real, buf, len, err);
+    free(real);
+    return rc;
+}
+
 void foam_file_free(foam_file **fp)
 {
     if (!fp || !*fp)

@@ -67,6 +67,9 @@ struct fpm {
     size_t mcap;
     double *hx, *hy;            /* [mcap] the coordinates handed to qhull */
     size_t *hmap;               /* [mcap] their particles */
+    double *dsx, *dsy, *dsu, *dsv; /* [mcap] particle shifts and their velocity changes */
+    double dt_last;             /* the last step's dt (particle shifting) */
+    int rows_stale;             /* particles hidden or shown: search again */
 };
 
 static double cpu_seconds(void) { return (double)clock() / CLOCKS_PER_SEC; }
@@ -211,6 +214,10 @@ void fpm_free(fpm **pf)
     free(f->hx);
     free(f->hy);
     free(f->hmap);
+    free(f->dsx);
+    free(f->dsy);
+    free(f->dsu);
+    free(f->dsv);
     free(f);
     *pf = NULL;
 }
@@ -223,6 +230,15 @@ void fpm_set_gravity(fpm *f, const double g[2])
     f->P.g[0] = g[0];
     f->P.g[1] = g[1];
 }
+void fpm_hide(fpm *f, const unsigned char *hidden)
+{
+    for (size_t i = 0; i < f->ns; i++) {
+        unsigned char k = hidden[i] ? FPM_HIDDEN : i < f->nw ? FPM_WALL : FPM_GHOST;
+        f->rows_stale |= k != f->kind[i];
+        f->kind[i] = k;
+    }
+}
+
 size_t fpm_nwall(const fpm *f) { return f->nw; }
 const double *fpm_pressure(const fpm *f) { return f->p; }
 const double *fpm_density(const fpm *f) { return f->nd; }
@@ -302,8 +318,11 @@ static ump_status mls_rows(fpm *f, fpm_stats *st, ump_err *err)
     size_t nlin = 0;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
-        if (f->kind[i] == FPM_GHOST)
+        if (f->kind[i] >= FPM_GHOST) {
+            if (f->kind[i] == FPM_HIDDEN)
+                f->surf[i] = 1; /* dry: p = 0 */
             continue;
+        }
         /* number density of fluid and ghost particles (the MPS kernel), and
          * the offset of their weighted centroid */
         double nd = 0, mx = 0, my = 0;
@@ -325,7 +344,7 @@ static ump_status mls_rows(fpm *f, fpm_stats *st, ump_err *err)
         double *c[MLS_NOUT] = {NULL, c1, c2, c3, NULL, c5};
 #pragma omp for schedule(dynamic, 64)
         for (size_t i = 0; i < n; i++) {
-            if (f->kind[i] == FPM_GHOST)
+            if (f->kind[i] >= FPM_GHOST)
                 continue;
             for (size_t q = R->off[i]; q < R->off[i + 1]; q++)
                 f->cx[q] = f->cy[q] = f->cl[q] = 0;
@@ -410,7 +429,7 @@ static ump_status solve_ppe(fpm *f, const double *src, const double *flux, const
     size_t nu = 0, nneu = 0;
     for (size_t i = 0; i < n; i++) {
         f->unk[i] = -1;
-        if (f->kind[i] == FPM_GHOST || f->surf[i])
+        if (f->kind[i] >= FPM_GHOST || f->surf[i])
             continue;
         f->unk[i] = (long)nu;
         f->unk_part[nu++] = i;
@@ -420,7 +439,7 @@ static ump_status solve_ppe(fpm *f, const double *src, const double *flux, const
     st->nneumann = nneu;
     for (size_t i = 0; i < n; i++)
         if (f->unk[i] < 0)
-            f->p[i] = f->kind[i] != FPM_GHOST && pd ? pd[i] : 0;
+            f->p[i] = f->kind[i] < FPM_GHOST && pd ? pd[i] : 0;
     if (nu == 0)
         return UMP_OK;
     /* row lengths: the unknown neighbours with a coefficient, and itself */
@@ -489,7 +508,7 @@ static ump_status pressure(fpm *f, double dt, fpm_stats *st, ump_err *err)
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         f->src[i] = 0;
-        if (f->kind[i] == FPM_GHOST || f->surf[i])
+        if (f->kind[i] >= FPM_GHOST || f->surf[i])
             continue;
         if (f->kind[i] == FPM_FLUID) {
             /* Eq. 24: lap p = rho/dt div u~; + the density deviation (a
@@ -526,7 +545,7 @@ ump_status fpm_poisson(fpm *f, const double *src, const double *flux, const doub
 {
     memset(st, 0, sizeof *st);
     UMP_CALL(reserve(f, err));
-    static const int need[3] = {1, 1, 0};
+    static const int need[4] = {1, 1, 0, -1};
     UMP_CALL(pnbr_update(&f->nb, f->s, f->kind, need, f->P.h, FPM_SKIN * f->P.l0, 1, "FPM", err));
     UMP_CALL(mls_rows(f, st, err));
     return solve_ppe(f, src, flux, pd, st, err);
@@ -538,6 +557,7 @@ ump_status fpm_step(fpm *f, double dt, fpm_stats *st, ump_err *err)
 {
     memset(st, 0, sizeof *st);
     UMP_CHECK(dt > 0 && isfinite(dt), err, UMP_ERR_INPUT, "FPM: time step %g", dt);
+    f->dt_last = dt;
     UMP_CALL(reserve(f, err));
     part_set *s = f->s;
     size_t n = s->n, ns = f->ns;
@@ -549,8 +569,9 @@ ump_status fpm_step(fpm *f, double dt, fpm_stats *st, ump_err *err)
         s->y[i] += dt * s->v[i];
     }
     /* 2. rows and MLS coefficients at x^{n+1} */
-    static const int need[3] = {1, 1, 0};
-    UMP_CALL(pnbr_update(&f->nb, s, f->kind, need, f->P.h, FPM_SKIN * f->P.l0, 0, "FPM", err));
+    static const int need[4] = {1, 1, 0, -1};
+    UMP_CALL(pnbr_update(&f->nb, s, f->kind, need, f->P.h, FPM_SKIN * f->P.l0, f->rows_stale, "FPM", err));
+    f->rows_stale = 0;
     UMP_CALL(mls_rows(f, st, err));
     c1 = cpu_seconds(), w1 = wall_seconds();
     st->cpu[0] += c1 - c0, st->wall[0] += w1 - w0;
@@ -659,6 +680,10 @@ ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char *
         GROW_TO(f->hx, nc);
         GROW_TO(f->hy, nc);
         GROW_TO(f->hmap, nc);
+        GROW_TO(f->dsx, nc);
+        GROW_TO(f->dsy, nc);
+        GROW_TO(f->dsu, nc);
+        GROW_TO(f->dsv, nc);
         f->mcap = nc;
     }
     memset(f->keep, 1, n);
@@ -666,6 +691,60 @@ ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char *
     /* the rows are those of the step (positions at x^{n+1}); the caller
      * may have put some particles back (stopped at a wall): offsets are
      * taken from the positions, not from the rows */
+    if (mg->shift > 0 && f->dt_last > 0) {
+        /* particle shifting (a departure, fpm.h): dr = -D grad C (Lind et
+         * al. 2012), D = A (r_s/2) |u| dt (Skillen et al. 2013: A h |u| dt,
+         * r_s = 2h); computed for all, then applied (Jacobi: the result
+         * does not depend on the order or the threads) */
+        const double rs = f->P.re_s * l0, cap = 0.1 * l0, A = mg->shift, dt = f->dt_last;
+        double big = 0;
+#pragma omp parallel for schedule(static) reduction(max : big)
+        for (size_t i = ns; i < n; i++) {
+            double gx = 0, gy = 0;
+            int near = f->surf[i];
+            for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
+                size_t j = R->j[q];
+                if (f->kind[j] == FPM_WALL)
+                    continue; /* on the wall face: the ghosts complete the lattice */
+                double dx = s->x[j] - s->x[i], dy = s->y[j] - s->y[i], r = sqrt(dx * dx + dy * dy);
+                if (r >= rs || r <= 0)
+                    continue;
+                near |= f->kind[j] == FPM_FLUID && f->surf[j];
+                double qq = r / rs, dw = -12 * qq * (1 - qq) * (1 - qq) / rs; /* d/dr of (1-q)^3 (1+3q) */
+                gx -= dw * dx / r; /* grad_i w(|x_i - x_j|) */
+                gy -= dw * dy / r;
+            }
+            gx /= f->n0;
+            gy /= f->n0;
+            double D = A * 0.5 * rs * hypot(s->u[i], s->v[i]) * dt;
+            double sx = -D * gx, sy = -D * gy, g2 = gx * gx + gy * gy;
+            if (near && g2 > 0) {
+                /* the free surface: along it only (Lind et al. 2012) */
+                double t = (sx * gx + sy * gy) / g2;
+                sx -= t * gx;
+                sy -= t * gy;
+            }
+            double len = hypot(sx, sy);
+            if (len > cap) {
+                sx *= cap / len;
+                sy *= cap / len;
+                len = cap;
+            }
+            big = fmax(big, len);
+            f->dsx[i] = sx;
+            f->dsy[i] = sy;
+            /* the velocity at the new place: u + dr.grad u (MLS gradient) */
+            f->dsu[i] = sx * row_sum(f, i, f->cx, f->sx[i], s->u) + sy * row_sum(f, i, f->cy, f->sy[i], s->u);
+            f->dsv[i] = sx * row_sum(f, i, f->cx, f->sx[i], s->v) + sy * row_sum(f, i, f->cy, f->sy[i], s->v);
+        }
+        for (size_t i = ns; i < n; i++) {
+            s->x[i] += f->dsx[i];
+            s->y[i] += f->dsy[i];
+            s->u[i] += f->dsu[i];
+            s->v[i] += f->dsv[i];
+        }
+        ms->max_shift = big / l0;
+    }
     if (mg->d_wall > 0) {
         const double dw = mg->d_wall * l0;
         size_t nsh = 0;
@@ -730,7 +809,7 @@ ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char *
         for (size_t i = 0; i < n; i++) {
             int in = f->keep[i] && ((f->kind[i] == FPM_FLUID && !f->surf[i] && f->quad[i]) ||
                                     (f->kind[i] == FPM_WALL && !f->surf[i]));
-            if (f->kind[i] == FPM_GHOST)
+            if (f->kind[i] >= FPM_GHOST)
                 continue;
             f->hx[m] = s->x[i];
             f->hy[m] = s->y[i];

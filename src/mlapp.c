@@ -92,6 +92,13 @@ typedef struct mlapp {
     int nmoving;                     /* patches that move */
     int *solid_patch;                /* [nsolid] the patch carrying each solid particle */
     double *sx0, *sy0;               /* [nsolid] their positions at displacement 0 */
+    ump_idx *mface;                  /* [nmface] the boundary faces of the moving patches */
+    size_t nmface;
+    double reach;                    /* depth of the solid particles behind a wall [m] */
+    unsigned char *hidden;           /* [nsolid] a static solid covered by a moving wall */
+    char *pd_text;                   /* the start time's pointDisplacement, written with every time */
+    size_t pd_len;
+    size_t nhidden;
     double *pdisp, *pvel;            /* [2 npatches] displacement, velocity at the last time */
     double *prev_x, *prev_y;         /* fluid positions before the step [cap] */
     ump_idx *prev_cell;
@@ -125,6 +132,9 @@ static void mlapp_free(mlapp *a)
             f1_free(&a->pmove[p]);
     free(a->pmove);
     free(a->solid_patch);
+    free(a->mface);
+    free(a->pd_text);
+    free(a->hidden);
     free(a->sx0);
     free(a->sy0);
     free(a->pdisp);
@@ -245,6 +255,9 @@ static ump_status read_wall_motion(mlapp *a, const char *tname, ump_err *err)
     UMP_CHECK(foam_file_exists(path), err, UMP_ERR_INPUT,
               "%s: missing: constant/dynamicMeshDict has motionSolver displacementLaplacian, whose wall motion "
               "meshlessFoam reads from the point displacement", path);
+    /* carried to every written time as it is (a Function1 of time): a
+     * restart reads it there, as interFoam's */
+    UMP_CALL(foam_read_text(path, &a->pd_text, &a->pd_len, err));
     foam_file *f = NULL;
     UMP_CALL(foam_file_read(path, &f, err));
     ump_status rc = UMP_OK;
@@ -453,11 +466,43 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
             free(sface);
             return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
         }
+        a->hidden = ump_alloc_array(ns + 1, sizeof *a->hidden);
+        a->mface = ump_alloc_array((size_t)(m->nfaces - m->ninternal) + 1, sizeof *a->mface);
+        if (!a->hidden || !a->mface) {
+            free(sface);
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory");
+        }
+        a->nmface = 0;
+        for (ump_idx f = m->ninternal; f < m->nfaces; f++)
+            if (a->pmove[m->face_patch[f]])
+                a->mface[a->nmface++] = f;
+        a->reach = thick;
         for (size_t i = 0; i < ns; i++) {
             ump_idx f = i < nwp ? a->wall_face[i] : sface[i - nwp];
-            a->solid_patch[i] = f >= 0 ? m->face_patch[f] : -1;
-            a->sx0[i] = a->s->x[i];
-            a->sy0[i] = a->s->y[i];
+            int p = f >= 0 ? m->face_patch[f] : -1;
+            double x = a->s->x[i], y = a->s->y[i];
+            /* a corner's solids, as near to a static wall face as to a
+             * moving one, stay with the static wall: the floor goes on
+             * under a piston that slides along it (moving with the piston
+             * they would pile onto the floor's own) */
+            if (p >= 0 && a->pmove[p] && i >= nwp) {
+                double own = mlseed_seg_dist(x, y, m->vx[m->fv0[f]], m->vy[m->fv0[f]], m->vx[m->fv1[f]],
+                                             m->vy[m->fv1[f]]);
+                for (ump_idx g = m->ninternal; g < m->nfaces; g++) {
+                    int q = m->face_patch[g];
+                    if (!a->wall_patch[q] || a->pmove[q])
+                        continue;
+                    if (mlseed_seg_dist(x, y, m->vx[m->fv0[g]], m->vy[m->fv0[g]], m->vx[m->fv1[g]],
+                                        m->vy[m->fv1[g]]) <= own + 1e-9 * l0) {
+                        p = q;
+                        break;
+                    }
+                }
+            }
+            a->solid_patch[i] = p;
+            a->hidden[i] = 0;
+            a->sx0[i] = x;
+            a->sy0[i] = y;
         }
         free(sface);
     }
@@ -694,6 +739,8 @@ static ump_status write_time(mlapp *a, const rt_time *t, ump_err *err)
         rc = fio_write_cloud_field(td.tmp_dir, t->name, a->ml.cloud_name, "freeSurface", 1, nf, sc,
                                    a->ctl.write_precision, err);
     }
+    if (rc == UMP_OK && a->pd_text)
+        rc = fio_write_text(td.tmp_dir, "pointDisplacement", a->pd_text, a->pd_len, err);
     if (rc == UMP_OK)
         rc = fio_write_uniform_time(td.tmp_dir, t->name, t->value, t->name, t->index, t->delta_t, t->delta_t0,
                                     a->ctl.write_precision, a->ctl.time_format_fixed, err);
@@ -843,6 +890,50 @@ static void move_walls(mlapp *a, double t, double dt, int first)
             wacc[2 * i + 1] = ap[2 * p + 1];
         }
     }
+    /* a static solid particle that a moving wall has passed over (behind
+     * a moving face, within the solids' depth, its projection on the
+     * face) is hidden: the floor's points under a piston are not wall for
+     * the liquid in front of it (the floor's particles beneath the floor
+     * project beyond the piston's face and stay) */
+    double bx0 = HUGE_VAL, by0 = HUGE_VAL, bx1 = -HUGE_VAL, by1 = -HUGE_VAL;
+    for (size_t k = 0; k < a->nmface; k++) {
+        ump_idx g = a->mface[k];
+        int p = m->face_patch[g];
+        for (int e = 0; e < 2; e++) {
+            ump_idx v = e ? m->fv1[g] : m->fv0[g];
+            bx0 = fmin(bx0, m->vx[v] + a->pdisp[2 * p]);
+            bx1 = fmax(bx1, m->vx[v] + a->pdisp[2 * p]);
+            by0 = fmin(by0, m->vy[v] + a->pdisp[2 * p + 1]);
+            by1 = fmax(by1, m->vy[v] + a->pdisp[2 * p + 1]);
+        }
+    }
+    const double R = a->reach, tol = 1e-9 * a->prm.l0;
+    size_t nh = 0;
+#pragma omp parallel for schedule(static) reduction(+ : nh)
+    for (size_t i = 0; i < ns; i++) {
+        int p = a->solid_patch[i];
+        unsigned char h = 0;
+        double x = s->x[i], y = s->y[i];
+        if (p >= 0 && !a->pmove[p] && x >= bx0 - R && x <= bx1 + R && y >= by0 - R && y <= by1 + R) {
+            for (size_t k = 0; k < a->nmface && !h; k++) {
+                ump_idx g = a->mface[k];
+                int q = m->face_patch[g];
+                double ox = a->pdisp[2 * q], oy = a->pdisp[2 * q + 1];
+                double ax = m->vx[m->fv0[g]] + ox, ay = m->vy[m->fv0[g]] + oy;
+                double ex = m->vx[m->fv1[g]] + ox - ax, ey = m->vy[m->fv1[g]] + oy - ay, l2 = ex * ex + ey * ey;
+                double tp = l2 > 0 ? ((x - ax) * ex + (y - ay) * ey) / l2 : -1;
+                double behind = (x - ax) * m->nx[g] + (y - ay) * m->ny[g]; /* outward normal */
+                h = tp >= -1e-9 && tp <= 1 + 1e-9 && behind > tol && behind <= R;
+            }
+        }
+        a->hidden[i] = h;
+        nh += h;
+    }
+    a->nhidden = nh;
+    if (a->fpm)
+        fpm_hide(a->fpm, a->hidden);
+    else
+        mps_hide(a->solver, a->hidden);
 }
 
 /* FPM: particle management (fpm_manage): merged particles go, inserted
@@ -850,7 +941,7 @@ static void move_walls(mlapp *a, double t, double dt, int first)
  * leaves the mesh is dropped again). */
 static ump_status manage(mlapp *a, fpm_manage_stats *ms, ump_err *err)
 {
-    fpm_manage_params mg = {a->ml.d_wall, a->ml.d_min, a->ml.r_hole};
+    fpm_manage_params mg = {a->ml.d_wall, a->ml.d_min, a->ml.r_hole, a->ml.shift_a};
     const unsigned char *keep;
     UMP_CALL(fpm_manage(a->fpm, &mg, &keep, ms, err));
     size_t n1 = a->s->n; /* with the inserted ones */
@@ -1098,7 +1189,7 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         run_left += left;
         run_walled += walled;
         run_lost += lost;
-        fpm_manage_stats ms = {0, 0, 0};
+        fpm_manage_stats ms = {0, 0, 0, 0};
         if (a.fpm && (step + 1) % a.ml.manage_interval == 0) {
             c1 = (double)clock() / CLOCKS_PER_SEC, w1 = wall_seconds();
             if ((rc = manage(&a, &ms, err)) != UMP_OK)
@@ -1142,9 +1233,11 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         printf("Pressure: min %g max %g Pa\n", st.p_min, st.p_max);
         printf("Particles: %zu (left through open boundaries %zu, stopped at walls %zu%s)\n",
                a.s->n - ml_nsolid(&a), left, walled, lost ? ", LOST" : "");
+        if (a.nmoving)
+            printf("Moving walls: %zu solid particles of static walls covered (hidden)\n", a.nhidden);
         if (a.fpm)
-            printf("Particle management: %zu merged, %zu inserted, %zu moved off walls\n", ms.merged, ms.inserted,
-                   ms.shifted);
+            printf("Particle management: %zu merged, %zu inserted, %zu moved off walls; largest shift %g l0\n",
+                   ms.merged, ms.inserted, ms.shifted, ms.max_shift);
         if (lost)
             printf("--> meshlessFoam Warning: %zu particles could not be located on the mesh and were removed\n",
                    lost);

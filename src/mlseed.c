@@ -31,7 +31,7 @@ double mlseed_default_spacing(const mesh2d *m)
 }
 
 /* Distance from (px, py) to the segment a-b. */
-static double seg_dist(double px, double py, double ax, double ay, double bx, double by)
+double mlseed_seg_dist(double px, double py, double ax, double ay, double bx, double by)
 {
     double ex = bx - ax, ey = by - ay, l2 = ex * ex + ey * ey;
     double t = l2 > 0 ? ((px - ax) * ex + (py - ay) * ey) / l2 : 0;
@@ -164,7 +164,7 @@ ump_status mlseed_build(const mesh2d *m, const double *alpha, const double *u, c
         ump_idx bf = -1;
         for (size_t k = bin_off[c]; k < bin_off[c + 1]; k++) {
             ump_idx f = (ump_idx)bin_face[k];
-            double d = seg_dist(x, y, m->vx[m->fv0[f]], m->vy[m->fv0[f]], m->vx[m->fv1[f]], m->vy[m->fv1[f]]);
+            double d = mlseed_seg_dist(x, y, m->vx[m->fv0[f]], m->vy[m->fv0[f]], m->vx[m->fv1[f]], m->vy[m->fv1[f]]);
             /* ties (a corner shared by a wall and an open patch): the wall */
             if (d < best - 1e-12 * l0 || (fabs(d - best) <= 1e-12 * l0 && bf >= 0 &&
                                            !wall_patch[m->face_patch[bf]] && wall_patch[m->face_patch[f]])) {

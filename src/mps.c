@@ -36,7 +36,8 @@ struct mps {
     mps_params P;
     part_set *s;
     size_t ns;                 /* solid particles */
-    unsigned char *kind;       /* [cap] MPS_FLUID / MPS_WALL / MPS_DUMMY */
+    unsigned char *kind;       /* [cap] MPS_FLUID / MPS_WALL / MPS_DUMMY / MPS_HIDDEN */
+    unsigned char *kind0;      /* [ns] the solids' own kinds (mps_hide) */
     double n0_n, n0_lap, lambda;
     size_t cap;                /* capacity of the per-particle arrays */
     double *p, *nd, *gx, *gy, *div, *tmp;
@@ -146,8 +147,13 @@ ump_status mps_create(const mps_params *prm, part_set *s, size_t nsolid, const u
         mps_free(&m);
         return rc;
     }
+    m->kind0 = ump_alloc_array(nsolid + 1, sizeof *m->kind0);
+    if (!m->kind0) {
+        mps_free(&m);
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "MPS: out of memory");
+    }
     for (size_t i = 0; i < nsolid; i++)
-        m->kind[i] = kinds[i];
+        m->kind[i] = m->kind0[i] = kinds[i];
     double sw, sr;
     mps_lattice_sums(prm->re_n, &sw, &sr);
     m->n0_n = sw; /* Eq. 5 on the initial lattice, in units where l0 = 1 */
@@ -166,6 +172,7 @@ void mps_free(mps **pm)
         return;
     mps *m = *pm;
     free(m->kind);
+    free(m->kind0);
     free(m->p);
     free(m->nd);
     free(m->gx);
@@ -195,6 +202,12 @@ void mps_free(mps **pm)
 }
 
 size_t mps_nsolid(const mps *m) { return m->ns; }
+
+void mps_hide(mps *m, const unsigned char *hidden)
+{
+    for (size_t i = 0; i < m->ns; i++)
+        m->kind[i] = hidden[i] ? MPS_HIDDEN : m->kind0[i];
+}
 void mps_set_gravity(mps *m, const double g[2])
 {
     m->P.g[0] = g[0];
@@ -233,7 +246,7 @@ void mps_compact(mps *m, const unsigned char *keep, size_t n_before)
  * moved by more than half the skin since the build. */
 static ump_status rows_update(mps *m, int force, ump_err *err)
 {
-    static const int need[3] = {1, 1, 0};
+    static const int need[4] = {1, 1, 0, -1};
     return pnbr_update(&m->nb, m->s, m->kind, need, m->P.re_lap * m->P.l0, MPS_SKIN * m->P.l0, force, "MPS",
                        err);
 }
@@ -299,7 +312,7 @@ static size_t laplace_row(const mps *m, size_t i, double d0, double c, double re
 }
 
 /* Assemble the rows of the unknowns (unk_part[0..nu-1]) into rp/ci/av. */
-static ump_status assemble(mps *m, size_t nu, double d0, double c, double re, const unsigned char in_sum[3],
+static ump_status assemble(mps *m, size_t nu, double d0, double c, double re, const unsigned char in_sum[4],
                            ump_err *err)
 {
     const pnbr *R = &m->nb;
@@ -362,7 +375,7 @@ static ump_status viscous(mps *m, double dt, mps_stats *st, ump_err *err)
     for (size_t k = 0; k < nf; k++)
         m->unk_part[k] = ns + k;
     double c = dt * P->nu * 2.0 * DIM / (m->lambda * m->n0_lap); /* Eq. 6 with weights in lattice units */
-    static const unsigned char in_sum[3] = {1, 1, 1};
+    static const unsigned char in_sum[4] = {1, 1, 1, 0};
     UMP_CALL(assemble(m, nf, 1.0, c, P->re_lap * P->l0, in_sum, err));
     lsolve_csr A = {(ump_idx)nf, m->rp, m->ci, m->av};
     UMP_CALL(lsolve_rows_setup(m->kry, &A, LSOLVE_PC_JACOBI, err));
@@ -411,7 +424,7 @@ static size_t collide(mps *m, double dt)
                 continue;
             size_t j = R->j[q];
             double ex = R->dx[q] / r, ey = R->dy[q] / r;
-            double uj = j < ns ? 0 : s->u[j], vj = j < ns ? 0 : s->v[j];
+            double uj = s->u[j], vj = s->v[j]; /* a solid's: its wall's (0, or a moving wall's) */
             double vn = (s->u[i] - uj) * ex + (s->v[i] - vj) * ey; /* > 0: approaching */
             if (vn <= 0)
                 continue;
@@ -443,14 +456,14 @@ static void density(mps *m)
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         double nd = 0, dv = 0;
-        double ui = i < m->ns ? 0 : s->u[i], vi = i < m->ns ? 0 : s->v[i];
+        double ui = s->u[i], vi = s->v[i]; /* solids: their wall's velocity (0 unless it moves) */
         for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
             double w = mps_weight(R->r[q] / m->P.l0, m->P.re_n);
             if (w == 0)
                 continue;
             nd += w;
             size_t j = R->j[q];
-            double uj = j < m->ns ? 0 : s->u[j], vj = j < m->ns ? 0 : s->v[j];
+            double uj = s->u[j], vj = s->v[j];
             double r2 = R->r[q] * R->r[q];
             dv += ((uj - ui) * R->dx[q] + (vj - vi) * R->dy[q]) / r2 * w; /* divergence model, after Eq. 4 */
         }
@@ -576,7 +589,7 @@ static ump_status pressure(mps *m, double dt, mps_stats *st, ump_err *err)
     st->nsurface = nsurf;
     st->nunknowns = nu;
     double a = 2.0 * DIM / (m->lambda * m->n0_lap);
-    static const unsigned char in_sum[3] = {1, 1, 0}; /* fluid and wall, not dummy */
+    static const unsigned char in_sum[4] = {1, 1, 0, 0}; /* fluid and wall, not dummy */
     UMP_CALL(assemble(m, nu, 0.0, a, P->re_lap * P->l0, in_sum, err));
     double k_dens = P->rho / (dt * dt), k_div = P->rho / dt;
     for (size_t k = 0; k < nu; k++) {

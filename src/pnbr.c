@@ -33,11 +33,12 @@ void pnbr_free(pnbr *nb)
     memset(nb, 0, sizeof *nb);
 }
 
-/* Bin every particle on a grid of spacing h over the bounding box of all
- * particles: counting sort, O(N). Particles are clamped into the border
+/* Bin every particle but the hidden ones (need[kind] < 0) on a grid of
+ * spacing h over the bounding box of those particles: counting sort, O(N). Particles are clamped into the border
  * bins, which keeps the search exact (a bin may then hold distant
  * particles, which the distance test drops). */
-static ump_status grid_build(pnbr *g, const part_set *s, double h, const char *who, ump_err *err)
+static ump_status grid_build(pnbr *g, const part_set *s, const unsigned char *kind, const int *need, double h,
+                             const char *who, ump_err *err)
 {
     size_t n = s->n;
     double xmin = HUGE_VAL, ymin = HUGE_VAL, xmax = -HUGE_VAL, ymax = -HUGE_VAL;
@@ -45,13 +46,15 @@ static ump_status grid_build(pnbr *g, const part_set *s, double h, const char *w
         if (!isfinite(s->x[i]) || !isfinite(s->y[i]))
             return UMP_FAIL(err, UMP_ERR_INPUT, "%s: particle %zu (id %lld) has a non-finite position", who, i,
                             (long long)s->id[i]);
+        if (need[kind[i]] < 0)
+            continue;
         xmin = fmin(xmin, s->x[i]);
         xmax = fmax(xmax, s->x[i]);
         ymin = fmin(ymin, s->y[i]);
         ymax = fmax(ymax, s->y[i]);
     }
-    if (n == 0)
-        xmin = ymin = xmax = ymax = 0;
+    if (!(xmin <= xmax))
+        xmin = ymin = xmax = ymax = 0; /* none binned */
     g->h = h;
     g->x0 = xmin;
     g->y0 = ymin;
@@ -74,6 +77,10 @@ static ump_status grid_build(pnbr *g, const part_set *s, double h, const char *w
     }
     memset(g->goff, 0, sizeof *g->goff * (nbins + 1));
     for (size_t i = 0; i < n; i++) {
+        if (need[kind[i]] < 0) {
+            g->gbin[i] = -1;
+            continue;
+        }
         long bx = (long)floor((s->x[i] - g->x0) / h), by = (long)floor((s->y[i] - g->y0) / h);
         bx = bx < 0 ? 0 : bx >= g->nx ? g->nx - 1 : bx;
         by = by < 0 ? 0 : by >= g->ny ? g->ny - 1 : by;
@@ -85,7 +92,8 @@ static ump_status grid_build(pnbr *g, const part_set *s, double h, const char *w
     /* stable: indices increase within a bin */
     memcpy(g->gcur, g->goff, sizeof *g->gcur * nbins);
     for (size_t i = 0; i < n; i++)
-        g->gidx[g->gcur[g->gbin[i]]++] = i;
+        if (g->gbin[i] >= 0)
+            g->gidx[g->gcur[g->gbin[i]]++] = i;
     return UMP_OK;
 }
 
@@ -164,7 +172,7 @@ static ump_status rows_build(pnbr *R, const part_set *s, const unsigned char *ki
 #pragma omp for schedule(static)
         for (size_t i = 0; i < n; i++) {
             size_t cnt = 0;
-            if (need[kind[i]]) {
+            if (need[kind[i]] > 0) {
                 cnt = gather(R, s, i, re, NULL, NULL, NULL, NULL, PNBR_MAXN); /* count only */
                 if (cnt > PNBR_MAXN) {
 #pragma omp atomic write
@@ -223,7 +231,7 @@ ump_status pnbr_update(pnbr *nb, const part_set *s, const unsigned char *kind, c
     }
     if (force) {
         double re = radius + skin;
-        UMP_CALL(grid_build(nb, s, re, who, err));
+        UMP_CALL(grid_build(nb, s, kind, need, re, who, err));
         UMP_CALL(rows_build(nb, s, kind, need, re, who, err));
         memcpy(nb->xb, s->x, sizeof *nb->xb * n);
         memcpy(nb->yb, s->y, sizeof *nb->yb * n);

@@ -193,8 +193,8 @@ ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *e
  *              supportRadius 3; weightFunction spline; courantFPM 0.12;
  *              gravityStepFPM 0.24; surfaceRadius 3; surfaceBeta 0.8; surfaceShift 0.2; densitySourceFPM 0.02;
  *              wallDistance 0.25; mergeDistance 0.5; holeRadius 0.9;
- *              manageInterval 1; }
- * (the last twelve serve method FPM; reNumberDensity .. restitution and
+ *              particleShifting 0; manageInterval 1; }
+ * (the last thirteen serve method FPM; reNumberDensity .. restitution and
  * maxCo serve MPS) */
 typedef struct case_meshless {
     char method[16];             /* MPS */
@@ -219,6 +219,7 @@ typedef struct case_meshless {
     double shift_s;              /* free surface: centroid offset / l0 */
     double gamma_fpm;            /* FPM: weight of the density deviation in the PPE source */
     double d_wall, d_min, r_hole;/* particle management / l0 (fpm_manage) */
+    double shift_a;              /* particle shifting coefficient; 0: off */
     long manage_interval;        /* steps between particle managements */
 } case_meshless;
 

@@ -64,6 +64,10 @@ ump_status fio_write_phi(const char *dir, const char *location, const pmesh *pm,
  * 2 scientific %.18e), name quoted, index, and deltaT/deltaT0 with
  * write_precision significant digits (writePrecision, <= 0 means 6).
  * location is the time name; the header says "<location>/uniform". */
+/* dir/name with the len bytes of text, as they are (a file the solver
+ * carries unchanged from the start time: meshlessFoam's pointDisplacement). */
+ump_status fio_write_text(const char *dir, const char *name, const char *text, size_t len, ump_err *err);
+
 ump_status fio_write_uniform_time(const char *dir, const char *location,
                                   double value, const char *name, long index,
                                   double deltaT, double deltaT0,

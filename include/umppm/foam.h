@@ -166,6 +166,10 @@ void foam_file_free(foam_file **f);
 /* 1 if path or path.gz exists (as a regular file). */
 int foam_file_exists(const char *path);
 
+/* The bytes of path (or of path.gz, uncompressed) in *buf (malloc'ed, NUL
+ * after the *len bytes). */
+ump_status foam_read_text(const char *path, char **buf, size_t *len, ump_err *err);
+
 /* ---- dictionary look-up ------------------------------------------------ */
 /* Look up key in d: exact key first, then pattern keys (latest first, as
  * OpenFOAM). With recursive != 0, continue in the parent dictionaries.

@@ -47,8 +47,9 @@
 #include "umppm/particles.h"
 #include "umppm/ump.h"
 
-/* Kind of a particle. */
-enum { FPM_FLUID = 0, FPM_WALL = 1, FPM_GHOST = 2 };
+/* Kind of a particle. FPM_HIDDEN: a wall point or ghost covered by a
+ * moving wall (fpm_hide): in no row, nobody's neighbour. */
+enum { FPM_FLUID = 0, FPM_WALL = 1, FPM_GHOST = 2, FPM_HIDDEN = 3 };
 
 typedef struct fpm_params {
     double l0;          /* particle spacing [m] */
@@ -128,9 +129,11 @@ double fpm_max_dt(const fpm *f, double co, double cg, double u_wave);
  * (a hint: the caller locates them). */
 typedef struct fpm_manage_params {
     double d_wall, d_min, r_hole; /* / l0; 0 switches the action off */
+    double shift;                 /* shifting coefficient A; 0: off */
 } fpm_manage_params;
 typedef struct fpm_manage_stats {
     size_t shifted, merged, inserted;
+    double max_shift;             /* largest particle shift / l0 */
 } fpm_manage_stats;
 ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char **keep, fpm_manage_stats *ms,
                       ump_err *err);
@@ -141,6 +144,11 @@ void fpm_set_gravity(fpm *f, const double g[2]);
 
 size_t fpm_nsolid(const fpm *f);
 size_t fpm_nwall(const fpm *f);
+
+/* Hide the wall points and ghosts i < nsolid with hidden[i] != 0
+ * (covered by a moving wall), show the others again; takes effect at the
+ * next step. */
+void fpm_hide(fpm *f, const unsigned char *hidden);
 /* Fluid particles removed or reordered by the caller (part_compact):
  * per-particle arrays follow keep[] (solid ones always kept). */
 void fpm_compact(fpm *f, const unsigned char *keep, size_t n_before);

@@ -36,6 +36,9 @@ typedef struct mlseed_stats {
 /* Half the median of sqrt(cell area): about four particles per cell. */
 double mlseed_default_spacing(const mesh2d *m);
 
+/* Distance from (px, py) to the segment (ax, ay)-(bx, by). */
+double mlseed_seg_dist(double px, double py, double ax, double ay, double bx, double by);
+
 /* Seed the empty part_set s: solid particles first (kinds[] gets
  * MPS_WALL or MPS_DUMMY for each, caller frees), then fluid ones with
  * velocity (u, v) [ncells] of their cell (NULL: at rest) and their cell.

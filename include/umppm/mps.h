@@ -53,8 +53,9 @@
 #include "umppm/particles.h"
 #include "umppm/ump.h"
 
-/* Kind of a particle. */
-enum { MPS_FLUID = 0, MPS_WALL = 1, MPS_DUMMY = 2 };
+/* Kind of a particle. MPS_HIDDEN: a solid particle covered by a moving
+ * wall (mps_hide): in no row, nobody's neighbour. */
+enum { MPS_FLUID = 0, MPS_WALL = 1, MPS_DUMMY = 2, MPS_HIDDEN = 3 };
 
 /* Source term of the pressure equation. */
 typedef enum {
@@ -111,6 +112,11 @@ void mps_set_gravity(mps *m, const double g[2]);
 
 /* Number of solid particles ([0, nsolid) of the part_set). */
 size_t mps_nsolid(const mps *m);
+
+/* Hide the solid particles i < nsolid with hidden[i] != 0 (covered by a
+ * moving wall: a static wall's particles that a piston has passed over),
+ * show the others again; takes effect at the next step. */
+void mps_hide(mps *m, const unsigned char *hidden);
 /* Tell the solver that fluid particles were removed or reordered by the
  * caller (part_compact on the part_set): its per-particle arrays follow
  * keep[] (indices of the part_set before compaction, solid ones always 1). */

@@ -42,9 +42,11 @@ typedef struct pnbr {
 
 void pnbr_free(pnbr *nb);
 
-/* Rows within radius (m) for the particles i with need[kind[i]] != 0
+/* Rows within radius (m) for the particles i with need[kind[i]] > 0
  * (kind [n] of small integers, need indexed by them), neighbours of any
- * kind. force, or a particle that moved by more than skin/2 since the last
+ * kind but the hidden ones: need[kind[i]] < 0 keeps particle i out of
+ * every row (a solid covered by a moving wall); a caller that hides or
+ * shows particles forces a new search. force, or a particle that moved by more than skin/2 since the last
  * build, or a different particle count: a new search within radius + skin;
  * otherwise the offsets and distances of the old rows at the current
  * positions. who names the caller in messages ("MPS"). Fails for a
