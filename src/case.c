@@ -882,29 +882,29 @@ static const case_option meshless_options[] = {
     {"spacing", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_GE(0),
      "particle spacing l0 [m]; 0: half the median cell size of the mesh", ML_FIELD(spacing)},
     {"reNumberDensity", CASE_OPT_SCALAR, "3.1", 3.1, NULL, NULL, ML_RANGE(1, 6),
-     "r_e of number density, gradient and collisions / l0 (Eqs. 3-5)", ML_FIELD(re_n)},
+     "MPS: r_e of number density, gradient and collisions / l0 (Eqs. 3-5)", ML_FIELD(re_n)},
     {"reLaplacian", CASE_OPT_SCALAR, "3.1", 3.1, NULL, NULL, ML_RANGE(1, 8),
-     "r_e of the Laplacian / l0 (Eqs. 6-7), >= reNumberDensity", ML_FIELD(re_lap)},
+     "MPS: r_e of the Laplacian / l0 (Eqs. 6-7), >= reNumberDensity", ML_FIELD(re_lap)},
     {"beta", CASE_OPT_SCALAR, "0.98", 0.98, NULL, NULL, UM_OPEN01,
-     "free surface: particles with n* < beta n0 get p = 0", ML_FIELD(beta)},
+     "MPS: free surface: particles with n* < beta n0 get p = 0", ML_FIELD(beta)},
     {"lambda", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_GE(0),
-     "Laplacian parameter lambda [m^2]; 0: Eq. 7 on the initial lattice", ML_FIELD(lambda)},
+     "MPS: Laplacian parameter lambda [m^2]; 0: Eq. 7 on the initial lattice", ML_FIELD(lambda)},
     {"sourceTerm", CASE_OPT_CHOICE, "mixed", 1, source_words, source_values, UM_NORANGE,
-     "pressure source: density (Eq. 18) or mixed (div u* + gamma density)", ML_FIELD(source_mixed)},
+     "MPS: pressure source: density (Eq. 18) or mixed (div u* + gamma density)", ML_FIELD(source_mixed)},
     {"gamma", CASE_OPT_SCALAR, "0.1", 0.1, NULL, NULL, ML_CLOSED(0, 1),
-     "weight of the density deviation in the mixed source", ML_FIELD(gamma)},
+     "MPS: weight of the density deviation in the mixed source", ML_FIELD(gamma)},
     {"collisionDistance", CASE_OPT_SCALAR, "0.5", 0.5, NULL, NULL, ML_CLOSED(0, 1),
-     "collision model below this distance / l0; 0: off", ML_FIELD(collision)},
+     "MPS: collision model below this distance / l0; 0: off", ML_FIELD(collision)},
     {"restitution", CASE_OPT_SCALAR, "0.2", 0.2, NULL, NULL, ML_CLOSED(0, 1),
-     "coefficient of restitution of the collision model", ML_FIELD(restitution)},
+     "MPS: coefficient of restitution of the collision model", ML_FIELD(restitution)},
     {"maxCo", CASE_OPT_SCALAR, "0.2", 0.2, NULL, NULL, ML_RANGE(0, 1),
-     "Courant number |U| dt / l0 kept by adjustTimeStep", ML_FIELD(max_co)},
+     "MPS: Courant number |U| dt / l0 kept by adjustTimeStep", ML_FIELD(max_co)},
     {"pressureTolerance", CASE_OPT_SCALAR, "1e-8", 1e-8, NULL, NULL, UM_GT(0),
      "relative tolerance of the pressure CG", ML_FIELD(p_tol)},
     {"velocityTolerance", CASE_OPT_SCALAR, "1e-10", 1e-10, NULL, NULL, UM_GT(0),
-     "relative tolerance of the viscous CG", ML_FIELD(u_tol)},
+     "MPS: relative tolerance of the viscous CG", ML_FIELD(u_tol)},
     {"maxIter", CASE_OPT_LABEL, "5000", 5000, NULL, NULL, UM_GE(1),
-     "iteration limit of both CG solves", ML_FIELD(maxit)},
+     "iteration limit of the linear solvers (pressure; MPS: also viscosity)", ML_FIELD(maxit)},
     {"cloudName", CASE_OPT_WORD, "meshlessCloud", 0, NULL, NULL, UM_NORANGE,
      "name of the particle cloud under <time>/lagrangian/", ML_FIELD(cloud_name)},
     {"maxVelocity", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_GE(0),
@@ -974,6 +974,16 @@ ump_status case_read_meshless(const char *case_dir, case_meshless *u, ump_err *e
         rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: meshless cloudName '%s' is not a plain name: it becomes the "
                       "directory <time>/lagrangian/<cloudName>, so it must be non-empty without '/' or '..'",
                       e ? e->file : "system/fvSolution", e ? e->line : 0, u->cloud_name);
+    }
+    /* a key of the other method would have no effect: refused by name
+     * (the help text of a method's own keys starts with its name) */
+    const char *other = strcmp(u->method, "FPM") == 0 ? "MPS:" : "FPM:";
+    for (size_t k = 0; rc == UMP_OK && d && k < meshless_table.n; k++) {
+        const case_option *o = &meshless_options[k];
+        if (strncmp(o->help, other, 4) != 0 || !(e = foam_dict_find(d, o->key, 0)))
+            continue;
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: meshless %s serves method %.3s; with method %s it has no effect: "
+                      "remove it, or set method %.3s", e->file, e->line, o->key, other, u->method, other);
     }
     foam_file_free(&f);
     return rc;

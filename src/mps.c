@@ -379,6 +379,9 @@ static ump_status viscous(mps *m, double dt, mps_stats *st, ump_err *err)
     UMP_CALL(assemble(m, nf, 1.0, c, P->re_lap * P->l0, in_sum, err));
     lsolve_csr A = {(ump_idx)nf, m->rp, m->ci, m->av};
     UMP_CALL(lsolve_rows_setup(m->kry, &A, LSOLVE_PC_JACOBI, err));
+    int solid_moves = 0; /* the sum over solid neighbours only for moving walls */
+    for (size_t i = 0; i < ns && !solid_moves; i++)
+        solid_moves = s->u[i] != 0 || s->v[i] != 0;
     for (int d = 0; d < 2; d++) {
         double *vel = d ? s->v : s->u;
         const pnbr *R = &m->nb;
@@ -389,7 +392,7 @@ static ump_status viscous(mps *m, double dt, mps_stats *st, ump_err *err)
             m->b[k] = vel[i] + dt * P->g[d]; /* Eq. 14 right-hand side */
             /* the known velocities of the solid particles (no-slip on a
              * moving wall; zero on a fixed one) */
-            for (size_t q = R->off[i]; q < R->off[i + 1]; q++)
+            for (size_t q = R->off[i]; solid_moves && q < R->off[i + 1]; q++)
                 if (R->j[q] < ns)
                     m->b[k] += c * mps_weight(R->r[q], re) * vel[R->j[q]];
             m->x[k] = m->b[k];

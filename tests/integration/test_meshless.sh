@@ -16,9 +16,13 @@
 #      of rho g (h - y) (rho 1000, g 9.81, h the water depth 0.3 m; nearer
 #      the surface p lags by about rho g l0/2: p = 0 holds at the centres of
 #      the surface particles, half a spacing below h);
+#   3b/3c. the same tank by FPM (wall pressure to 0.5 %, |U| < 1e-9 m/s);
+#      the dam break by FPM to 0.06 s on 1 and 2 threads, the same cloud
+#      bit for bit;
 #   4. refusals by name before the first step: a moving wall, an inflow
 #      patch, a symmetryPlane patch, a turbulence model, no constant/g,
-#      gravity out of the plane, an unknown meshless key, three phases; and
+#      gravity out of the plane, an unknown meshless key, a key of the other
+#      method (MPS/FPM), three phases; and
 #      the log says the gas phase and sigma are not simulated.
 # Needs MESHLESSFOAM and TOOLDIR.
 set -eu -o pipefail
@@ -48,6 +52,7 @@ run_in "$c" blockMesh blockMesh
 run_in "$c" setFields setFields
 cp -r "$c" "$work/interFoam"
 cp -r "$c" "$work/damBreak1"
+cp -r "$c" "$work/fpmDam2"
 foam_set "$work/interFoam" system/controlDict application interFoam
 if run_in "$c" meshlessFoam env OMP_NUM_THREADS=2 "$MESHLESSFOAM" &&
     run_in "$work/damBreak1" meshlessFoam env OMP_NUM_THREADS=1 "$MESHLESSFOAM" &&
@@ -146,6 +151,34 @@ else
     fail=1
 fi
 
+# ---- 3c. FPM on 1 and 2 threads ------------------------------------------------
+# the same dam break by FPM to t = 0.06 s (merging, insertion, particle
+# shifting and the wall distance all at work): the clouds written with 1
+# and 2 threads agree bit for bit
+fd=$work/fpmDam2
+sed -i '/^meshless/,/^}/d' "$fd/system/fvSolution"
+printf 'meshless\n{\n    method FPM;\n}\n' >> "$fd/system/fvSolution"
+foam_set "$fd" system/controlDict endTime 0.06
+foam_set "$fd" system/controlDict writeInterval 0.06
+cp -r "$fd" "$work/fpmDam1"
+if run_in "$fd" meshlessFoam env OMP_NUM_THREADS=2 "$MESHLESSFOAM" &&
+    run_in "$work/fpmDam1" meshlessFoam env OMP_NUM_THREADS=1 "$MESHLESSFOAM"; then
+    nm=$(awk '/^Particle management:/ { m += $3; i += $5 } END { print m + 0, i + 0 }' "$fd/log.meshlessFoam")
+    echo "  FPM dam break to 0.06 s: merged, inserted: $nm"
+    same=1
+    for f in positions p U; do
+        cmp -s "$fd/0.06/lagrangian/meshlessCloud/$f" "$work/fpmDam1/0.06/lagrangian/meshlessCloud/$f" || same=0
+    done
+    if [ "$same" = 1 ]; then
+        echo "  ok   FPM, 1 and 2 threads: the same positions, velocities and pressures, bit for bit"
+    else
+        echo "  FAIL FPM: 1 and 2 threads write different clouds"
+        fail=1
+    fi
+else
+    fail=1
+fi
+
 # ---- 4. refusals ---------------------------------------------------------------
 # expect_refusal NAME PATTERN: meshlessFoam in $r fails before the first
 # step with PATTERN in its error
@@ -190,6 +223,13 @@ if [ -d "$c/constant/polyMesh" ]; then
     fresh
     sed -i '/^meshless/,/^}/c\meshless\n{\n    reLaplcian 3;\n}' "$r/system/fvSolution"
     expect_refusal unknownKey "unknown key 'reLaplcian'"
+    # a key of the other method would have no effect
+    fresh
+    sed -i '/^meshless/,/^}/c\meshless\n{\n    courantFPM 0.1;\n}' "$r/system/fvSolution"
+    expect_refusal fpmKeyUnderMPS "courantFPM serves method FPM"
+    fresh
+    sed -i '/^meshless/,/^}/c\meshless\n{\n    method FPM;\n    beta 0.9;\n}' "$r/system/fvSolution"
+    expect_refusal mpsKeyUnderFPM "beta serves method MPS"
     fresh
     sed -i 's/^phases .*/phases (water oil air);/' "$r/constant/transportProperties"
     expect_refusal threePhases "two phases"
