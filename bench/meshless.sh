@@ -1,17 +1,18 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# bench/meshless.sh -- meshlessFoam (MPS) cost per particle-step against
+# bench/meshless.sh -- meshlessFoam (MPS and FPM) cost per particle-step against
 # interFoam, on the Martin & Moyce dam break (tutorials/damBreakMartinMoyce:
 # a 0.3 x 0.15 m tank, a water column a x 2a, a = 0.05715 m).
 #
 #   bench/meshless.sh [-n "10000 100000"] [-endTime 0.01] [-threads "1 2"]
-#                     [-work DIR] [-o FILE]
+#                     [-methods "MPS FPM"] [-work DIR] [-o FILE]
 #
 # For each target particle count N: the particle spacing l0 = sqrt(2 a^2 / N)
 # and a blockMesh of square cells of side 2 l0 (meshlessFoam's default
 # spacing, half the cell size, is then l0: about 4 particles per cell, the
 # "matching resolution" of both solvers); setFields; meshlessFoam to endTime
-# on each thread count, interFoam (serial, the tutorial's settings) on the
+# with each method (meshless { method ...; }, other settings at their
+# defaults; FPM takes longer steps, Eqs. 26-27) on each thread count, interFoam (serial, the tutorial's settings) on the
 # same mesh to the same time. Printed per run: particles (or cells), steps,
 # set-up seconds (meshlessFoam's "Set-up" line), the wall seconds of the
 # time loop (ClockTime of the last step minus the set-up, from the log),
@@ -22,15 +23,16 @@
 set -eu -o pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 top=$(cd "$here/.." && pwd)
-ns="10000 100000" endTime=0.01 threads="1 2" work="" out=""
+ns="10000 100000" endTime=0.01 threads="1 2" methods="MPS FPM" work="" out=""
 while [ $# -gt 0 ]; do
     case $1 in
         -n) ns=$2; shift 2 ;;
         -endTime) endTime=$2; shift 2 ;;
         -threads) threads=$2; shift 2 ;;
+        -methods) methods=$2; shift 2 ;;
         -work) work=$2; shift 2 ;;
         -o) out=$2; shift 2 ;;
-        *) echo "usage: bench/meshless.sh [-n \"10000 100000\"] [-endTime 0.01] [-threads \"1 2\"] [-work DIR] [-o FILE]" >&2
+        *) echo "usage: bench/meshless.sh [-n \"10000 100000\"] [-endTime 0.01] [-threads \"1 2\"] [-methods \"MPS FPM\"] [-work DIR] [-o FILE]" >&2
            exit 1 ;;
     esac
 done
@@ -67,18 +69,22 @@ for n in $ns; do
     printf '%-12s %8d %7d %6d %9s %9s %12s %9s %8s\n' interFoam "$ncell" "$isteps" 1 - "$iexec" \
         "$(awk -v t="$iexec" -v s="$isteps" -v c="$ncell" 'BEGIN { printf "%.3g", 1e6 * t / s / c }')" \
         "$(rss "$c.interFoam/log.time")" 1
+    for meth in $methods; do
+    sed -i '/^meshless/,/^}/d' "$c/system/fvSolution"
+    printf 'meshless\n{\n    method %s;\n}\n' "$meth" >> "$c/system/fvSolution"
     for th in $threads; do
-        (cd "$c" && OMP_NUM_THREADS=$th /usr/bin/time -v "$ML" > "log.meshlessFoam.$th" 2> "log.time.$th")
-        log=$c/log.meshlessFoam.$th
+        (cd "$c" && OMP_NUM_THREADS=$th /usr/bin/time -v "$ML" > "log.meshlessFoam.$meth.$th" 2> "log.time.$meth.$th")
+        log=$c/log.meshlessFoam.$meth.$th
         np=$(sed -n 's/^    fluid: *\([0-9]*\).*/\1/p' "$log" | head -n 1)
         steps=$(grep -c '^Time = ' "$log")
         setup=$(sed -n 's/^Set-up: \([0-9.e+-]*\) s/\1/p' "$log")
         # the loop's wall time: the time loop's own stage total (wall column)
         loop=$(awk '/^    total/ { print $3 }' "$log" | tail -n 1)
-        printf '%-12s %8d %7d %6d %9s %9s %12s %9s %8s\n' meshlessFoam "$np" "$steps" "$th" "$setup" "$loop" \
+        printf '%-12s %8d %7d %6d %9s %9s %12s %9s %8s\n' "meshless.$meth" "$np" "$steps" "$th" "$setup" "$loop" \
             "$(awk -v t="$loop" -v s="$steps" -v p="$np" 'BEGIN { printf "%.3g", 1e6 * t / s / p }')" \
-            "$(rss "$c/log.time.$th")" \
+            "$(rss "$c/log.time.$meth.$th")" \
             "$(awk -v m="$loop" -v i="$iexec" 'BEGIN { printf "%.2f", m / i }')"
+    done
     done
 done
 echo "# work dir: $work"

@@ -935,7 +935,8 @@ static const case_option meshless_options[] = {
      "FPM: particle shifting coefficient A (dr = -A (r_s/2) |u| dt grad C, Skillen et al. 2013); 0: off",
      ML_FIELD(shift_a)},
     {"manageInterval", CASE_OPT_LABEL, "1", 1, NULL, NULL, UM_GE(1),
-     "FPM: steps between particle managements (merge, insert)", ML_FIELD(manage_interval)},
+     "FPM: steps between hole searches (qhull, insertion); merging and the wall distance act every step",
+     ML_FIELD(manage_interval)},
 };
 
 static const case_opt_table meshless_table = {"meshless", meshless_options,

@@ -803,7 +803,7 @@ ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char *
             }
         }
     }
-    if (mg->r_hole > 0) {
+    if (mg->r_hole > 0 && mg->insert) {
         /* the liquid's points: inside fluid particles and wet wall points */
         size_t m = 0;
         for (size_t i = 0; i < n; i++) {

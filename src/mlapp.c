@@ -939,9 +939,9 @@ static void move_walls(mlapp *a, double t, double dt, int first)
 /* FPM: particle management (fpm_manage): merged particles go, inserted
  * ones are located on the mesh from a neighbour's cell (one whose walk
  * leaves the mesh is dropped again). */
-static ump_status manage(mlapp *a, fpm_manage_stats *ms, ump_err *err)
+static ump_status manage(mlapp *a, int insert, fpm_manage_stats *ms, ump_err *err)
 {
-    fpm_manage_params mg = {a->ml.d_wall, a->ml.d_min, a->ml.r_hole, a->ml.shift_a};
+    fpm_manage_params mg = {a->ml.d_wall, a->ml.d_min, a->ml.r_hole, a->ml.shift_a, insert};
     const unsigned char *keep;
     UMP_CALL(fpm_manage(a->fpm, &mg, &keep, ms, err));
     size_t n1 = a->s->n; /* with the inserted ones */
@@ -1190,9 +1190,9 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         run_walled += walled;
         run_lost += lost;
         fpm_manage_stats ms = {0, 0, 0, 0};
-        if (a.fpm && (step + 1) % a.ml.manage_interval == 0) {
+        if (a.fpm) {
             c1 = (double)clock() / CLOCKS_PER_SEC, w1 = wall_seconds();
-            if ((rc = manage(&a, &ms, err)) != UMP_OK)
+            if ((rc = manage(&a, (step + 1) % a.ml.manage_interval == 0, &ms, err)) != UMP_OK)
                 goto done;
             stage_cpu[5] += (double)clock() / CLOCKS_PER_SEC - c1;
             stage_wall[5] += wall_seconds() - w1;

@@ -130,6 +130,7 @@ double fpm_max_dt(const fpm *f, double co, double cg, double u_wave);
 typedef struct fpm_manage_params {
     double d_wall, d_min, r_hole; /* / l0; 0 switches the action off */
     double shift;                 /* shifting coefficient A; 0: off */
+    int insert;                   /* search the holes (qhull) in this call */
 } fpm_manage_params;
 typedef struct fpm_manage_stats {
     size_t shifted, merged, inserted;
