@@ -87,6 +87,7 @@ typedef struct mlapp {
     double g2[2];                    /* gravity in the plane */
     case_motion mo;                  /* a moving container (case.h) */
     double amp2[2];                  /* its amplitude in the plane */
+    double d0[2];                    /* its displacement at the start time */
     double vframe[2];                /* its velocity at the time being written */
     f1 **pmove;                      /* [npatches] displacement of a moving wall patch, NULL: fixed */
     int nmoving;                     /* patches that move */
@@ -520,7 +521,9 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
         a->s->n = ns;
         int64_t next = 0;
         for (size_t i = 0; i < n && rc == UMP_OK; i++) {
-            double x = pos[3 * i + (size_t)m->ax[0]], y = pos[3 * i + (size_t)m->ax[1]];
+            /* (a swaying container's cloud is written where it is: back
+             * into the container's frame) */
+            double x = pos[3 * i + (size_t)m->ax[0]] - a->d0[0], y = pos[3 * i + (size_t)m->ax[1]] - a->d0[1];
             ump_idx c = -1, f = -1;
             part_where w = part_locate(m, cell[i], &x, &y, &c, &f);
             if (w != PART_INSIDE) {
@@ -713,9 +716,12 @@ static ump_status write_time(mlapp *a, const rt_time *t, ump_err *err)
         rc = UMP_FAIL(err, UMP_ERR_NOMEM, "writing the cloud: out of memory");
         goto fail;
     }
+    /* a swaying container: positions and the mesh are written where they
+     * are, moved by D(t) = A sin(w t) (interFoam writes <time>/polyMesh/points) */
+    double sn = a->mo.on ? sin(a->mo.omega * t->value) : 0, D2[2] = {a->amp2[0] * sn, a->amp2[1] * sn};
     for (size_t k = 0; k < nf; k++) {
         size_t i = ns + k;
-        mesh_to3d(m, s->x[i], s->y[i], pos + 3 * k);
+        mesh_to3d(m, s->x[i] + D2[0], s->y[i] + D2[1], pos + 3 * k);
         vel[3 * k + (size_t)m->normal] = 0;
         vel[3 * k + (size_t)m->ax[0]] = s->u[i] + a->vframe[0];
         vel[3 * k + (size_t)m->ax[1]] = s->v[i] + a->vframe[1];
@@ -738,6 +744,22 @@ static ump_status write_time(mlapp *a, const rt_time *t, ump_err *err)
             sc[k] = fs[ns + k];
         rc = fio_write_cloud_field(td.tmp_dir, t->name, a->ml.cloud_name, "freeSurface", 1, nf, sc,
                                    a->ctl.write_precision, err);
+    }
+    if (rc == UMP_OK && a->mo.on) {
+        const pmesh *pm = a->pm;
+        double *pts = ump_alloc_array(3 * (size_t)pm->npoints + 3, sizeof *pts);
+        if (!pts) {
+            rc = UMP_FAIL(err, UMP_ERR_NOMEM, "writing the moved mesh: out of memory");
+        } else {
+            for (size_t k = 0; k < 3 * (size_t)pm->npoints; k++)
+                pts[k] = pm->points[k] + a->mo.amplitude[k % 3] * sn;
+            char pdir[4400], loc[200];
+            snprintf(pdir, sizeof pdir, "%s/polyMesh", td.tmp_dir);
+            snprintf(loc, sizeof loc, "%s/polyMesh", t->name);
+            rc = pmesh_write_points(pts, pm->npoints, pdir, loc, a->ctl.write_precision > 0 ? a->ctl.write_precision : 6,
+                                    err);
+            free(pts);
+        }
     }
     if (rc == UMP_OK && a->pd_text)
         rc = fio_write_text(td.tmp_dir, "pointDisplacement", a->pd_text, a->pd_len, err);
@@ -1046,10 +1068,12 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
     if (a.mo.on)
         printf("Container motion (constant/dynamicMeshDict): solidBody oscillatingLinearMotion, displacement "
                "(%g %g) sin(%g t) m: solved in the container's frame, where gravity becomes g - a(t); "
-               "positions (cloud and mesh) are written in that frame (the mesh at its reference position), "
-               "velocities in the absolute frame as interFoam's (0/U is absolute: a liquid at rest starts at "
-               "-A w relative to the container)\n\n", a.amp2[0], a.amp2[1], a.mo.omega);
+               "written in the absolute frame as interFoam's: positions moved with the container, the moved "
+               "mesh in <time>/polyMesh/points, velocities absolute (0/U is absolute: a liquid at rest starts "
+               "at -A w relative to the container)\n\n", a.amp2[0], a.amp2[1], a.mo.omega);
     double tb = wall_seconds();
+    for (int d = 0; d < 2; d++)
+        a.d0[d] = a.mo.on ? a.amp2[d] * sin(a.mo.omega * t0) : 0;
     if ((rc = make_particles(&a, tname, err)) != UMP_OK)
         goto done;
     if (a.mo.on) {

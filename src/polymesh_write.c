@@ -25,8 +25,8 @@ static ump_status finish(FILE *fp, const char *tmp, const char *path, ump_err *e
     return UMP_OK;
 }
 
-static FILE *start(const char *dir, const char *name, const char *cls, char *tmp, char *path, size_t len,
-                   ump_err *err, ump_status *rc)
+static FILE *start_at(const char *dir, const char *name, const char *cls, const char *location, char *tmp,
+                      char *path, size_t len, ump_err *err, ump_status *rc)
 {
     snprintf(path, len, "%s/%s", dir, name);
     snprintf(tmp, len, "%s/.%s.tmp", dir, name);
@@ -35,8 +35,32 @@ static FILE *start(const char *dir, const char *name, const char *cls, char *tmp
         *rc = UMP_FAIL(err, UMP_ERR_IO, "%s: cannot write (%s)", path, strerror(errno));
         return NULL;
     }
-    fio_write_header(fp, cls, "constant/polyMesh", name, 0);
+    fio_write_header(fp, cls, location, name, 0);
     return fp;
+}
+
+static FILE *start(const char *dir, const char *name, const char *cls, char *tmp, char *path, size_t len,
+                   ump_err *err, ump_status *rc)
+{
+    return start_at(dir, name, cls, "constant/polyMesh", tmp, path, len, err, rc);
+}
+
+ump_status pmesh_write_points(const double *points, ump_idx npoints, const char *dir, const char *location,
+                              int precision, ump_err *err)
+{
+    char tmp[4200], path[4200];
+    ump_status rc = UMP_OK;
+    UMP_CALL(fio_mkdir_p(dir, err));
+    FILE *fp = start_at(dir, "points", "vectorField", location, tmp, path, sizeof path, err, &rc);
+    if (!fp)
+        return rc;
+    fprintf(fp, "\n%ld\n(\n", (long)npoints);
+    for (ump_idx i = 0; i < npoints; i++) {
+        const double *p = points + 3 * (size_t)i;
+        fprintf(fp, "(%.*g %.*g %.*g)\n", precision, p[0], precision, p[1], precision, p[2]);
+    }
+    fprintf(fp, ")\n");
+    return finish(fp, tmp, path, err);
 }
 
 ump_status pmesh_write(const pmesh *m, const char *dir, int precision, ump_err *err)

@@ -81,6 +81,12 @@ void pmesh_free(pmesh **m);
  * significant digits of the points. */
 ump_status pmesh_write(const pmesh *m, const char *dir, int precision, ump_err *err);
 
+/* Write dir/points alone (npoints points, [3*npoints]), the header's
+ * location as given ("0.5/polyMesh": a moved mesh, as a dynamic-mesh
+ * solver writes it into a time directory). */
+ump_status pmesh_write_points(const double *points, ump_idx npoints, const char *dir, const char *location,
+                              int precision, ump_err *err);
+
 ump_status pmesh_extrude(const double *xy, ump_idx nv, const ump_idx *poly_off,
                          const ump_idx *poly_v, ump_idx npoly, double thickness,
                          int (*patch_of)(double x, double y, void *ctx), void *ctx,

@@ -16,7 +16,9 @@
 #      of rho g (h - y) (rho 1000, g 9.81, h the water depth 0.3 m; nearer
 #      the surface p lags by about rho g l0/2: p = 0 holds at the centres of
 #      the surface particles, half a spacing below h);
-#   3b/3c. the same tank by FPM (wall pressure to 0.5 %, |U| < 1e-9 m/s);
+#   3b/3c/3d. the same tank by FPM (wall pressure to 0.5 %, |U| < 1e-9 m/s);
+#      swaying (oscillatingLinearMotion): the moved mesh and cloud written
+#      where they are, and a restart from them;
 #      the dam break by FPM to 0.06 s on 1 and 2 threads, the same cloud
 #      bit for bit;
 #   4. refusals by name before the first step: a moving wall, an inflow
@@ -148,6 +150,53 @@ if run_in "$hf" meshlessFoam "$MESHLESSFOAM" && run_in "$hf" writeCellCentres po
     umax=$(grep '^Velocity:' "$hf/log.meshlessFoam" | tail -n 1 | sed 's/.*max \([^ ]*\) m\/s.*/\1/')
     check_range "FPM largest |U| at 0.3 s (m/s)" "$umax" 0 1e-9
 else
+    fail=1
+fi
+
+# ---- 3d. a swaying container is written where it is -------------------------
+# the tank at rest swaying x = 0.01 sin(5 t): at t = 0.1 <time>/polyMesh/
+# points is constant/polyMesh/points moved by 0.01 sin(0.5), the cloud's
+# mean x moved with it (to within the liquid's slosh, 1 mm), and a restart
+# from there puts the particles back into the container's frame (located
+# on the mesh, the same ids)
+sw=$work/sway
+case_copy hydrostaticTank "$sw"
+foam_set "$sw" system/controlDict endTime 0.1
+foam_set "$sw" system/controlDict writeInterval 0.1
+printf 'FoamFile { version 2.0; format ascii; class dictionary; object dynamicMeshDict; }\ndynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolver solidBody;\nsolidBodyMotionFunction oscillatingLinearMotion;\noscillatingLinearMotionCoeffs { amplitude (0.01 0 0); omega 5; }\n' > "$sw/constant/dynamicMeshDict"
+run_in "$sw" blockMesh blockMesh
+run_in "$sw" setFields setFields
+if run_in "$sw" meshlessFoam "$MESHLESSFOAM" && [ -f "$sw/0.1/polyMesh/points" ]; then
+    p0=$(sed -n '/^(/,/^)/p' "$sw/constant/polyMesh/points" | sed -n '2p' | tr -d '()')
+    p1=$(sed -n '/^(/,/^)/p' "$sw/0.1/polyMesh/points" | sed -n '2p' | tr -d '()')
+    dx=$(awk -v a="$p0" -v b="$p1" 'BEGIN { split(a, x); split(b, y); printf "%.3e", (y[1] - x[1]) / (0.01 * sin(0.5)) - 1 + (y[2] - x[2]) + (y[3] - x[3]) }')
+    check_range "moved mesh: (point 0 moved by) / (0.01 sin(0.5)) - 1 (written to 6 digits)" "$dx" -1e-5 1e-5
+    mx() { sed -n '/^(/,/^)/p' "$1" | sed '1d;$d' | tr -d '()' | awk '{ s += $1; n++ } END { printf "%.6f", s / n }'; }
+    # water over the full width (0.4 m): its mean x is 0.2 m in the
+    # container's frame, up to the slosh (the surface tilts under the
+    # acceleration, up to A w^2 = 0.25 m/s^2: about 1 mm); the check's
+    # bound, half the displacement, fails a cloud written in the
+    # container's frame or moved twice
+    m1=$(mx "$sw/0.1/lagrangian/meshlessCloud/positions")
+    d1=$(awk -v a="$m1" 'BEGIN { printf "%.6f", a - 0.2 - 0.01 * sin(0.5) }')
+    check_range "cloud's mean x at 0.1 s - 0.2 - 0.01 sin(0.5) (m; the container moved by 4.8 mm)" "$d1" -0.0024 0.0024
+    rs=$work/swayRestart
+    cp -r "$sw" "$rs"
+    foam_set "$rs" system/controlDict startFrom latestTime
+    foam_set "$rs" system/controlDict endTime 0.12
+    foam_set "$rs" system/controlDict writeInterval 0.02
+    if run_in "$rs" meshlessFoam "$MESHLESSFOAM"; then
+        m2=$(mx "$rs/0.12/lagrangian/meshlessCloud/positions")
+        d2=$(awk -v a="$m2" 'BEGIN { printf "%.6f", a - 0.2 - 0.01 * sin(0.6) }')
+        check_range "restart: the cloud's mean x at 0.12 s - 0.2 - 0.01 sin(0.6) (m; moved by 5.6 mm)" "$d2" -0.0028 0.0028
+        grep -q 'from the cloud 0.1/lagrangian/meshlessCloud (restart)' "$rs/log.meshlessFoam" &&
+            echo "  ok   restart of the swaying tank from the written (moved) cloud" ||
+            { echo "  FAIL restart of the swaying tank did not read the cloud"; fail=1; }
+    else
+        fail=1
+    fi
+else
+    echo "  FAIL swaying tank: no run, or no 0.1/polyMesh/points"
     fail=1
 fi
 
