@@ -710,9 +710,10 @@ ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char *
                 if (r >= rs || r <= 0)
                     continue;
                 near |= f->kind[j] == FPM_FLUID && f->surf[j];
-                double qq = r / rs, dw = -12 * qq * (1 - qq) * (1 - qq) / rs; /* d/dr of (1-q)^3 (1+3q) */
-                gx -= dw * dx / r; /* grad_i w(|x_i - x_j|) */
-                gy -= dw * dy / r;
+                double w, w1, wq, w2;
+                mls_wfun_eval(MLS_WFUN_SPLINE, r / rs, &w, &w1, &wq, &w2);
+                gx -= wq / (rs * rs) * dx; /* grad_i w(|x_i - x_j| / rs) = w'(q)/q (x_i - x_j) / rs^2 */
+                gy -= wq / (rs * rs) * dy;
             }
             gx /= f->n0;
             gy /= f->n0;

@@ -256,11 +256,11 @@ static ump_status read_wall_motion(mlapp *a, const char *tname, ump_err *err)
     UMP_CHECK(foam_file_exists(path), err, UMP_ERR_INPUT,
               "%s: missing: constant/dynamicMeshDict has motionSolver displacementLaplacian, whose wall motion "
               "meshlessFoam reads from the point displacement", path);
-    /* carried to every written time as it is (a Function1 of time): a
-     * restart reads it there, as interFoam's */
+    /* read once, parsed, and carried to every written time as it is (a
+     * Function1 of time): a restart reads it there, as interFoam's */
     UMP_CALL(foam_read_text(path, &a->pd_text, &a->pd_len, err));
     foam_file *f = NULL;
-    UMP_CALL(foam_file_read(path, &f, err));
+    UMP_CALL(foam_file_parse(path, a->pd_text, a->pd_len, &f, err));
     ump_status rc = UMP_OK;
     const pmesh *pm = a->pm;
     a->pmove = ump_alloc_array((size_t)pm->npatches + 1, sizeof *a->pmove);
@@ -696,6 +696,15 @@ static ump_status fill_fields(mlapp *a, ump_err *err)
     return UMP_OK;
 }
 
+/* A swaying container's displacement at time t, A sin(w t), in the plane
+ * (0 for a fixed one). */
+static void frame_disp(const mlapp *a, double t, double d[2])
+{
+    double sn = a->mo.on ? sin(a->mo.omega * t) : 0;
+    d[0] = a->amp2[0] * sn;
+    d[1] = a->amp2[1] * sn;
+}
+
 static ump_status write_time(mlapp *a, const rt_time *t, ump_err *err)
 {
     /* velocities are written in the absolute frame, as interFoam's (the
@@ -718,7 +727,8 @@ static ump_status write_time(mlapp *a, const rt_time *t, ump_err *err)
     }
     /* a swaying container: positions and the mesh are written where they
      * are, moved by D(t) = A sin(w t) (interFoam writes <time>/polyMesh/points) */
-    double sn = a->mo.on ? sin(a->mo.omega * t->value) : 0, D2[2] = {a->amp2[0] * sn, a->amp2[1] * sn};
+    double sn = a->mo.on ? sin(a->mo.omega * t->value) : 0, D2[2];
+    frame_disp(a, t->value, D2);
     for (size_t k = 0; k < nf; k++) {
         size_t i = ns + k;
         mesh_to3d(m, s->x[i] + D2[0], s->y[i] + D2[1], pos + 3 * k);
@@ -1072,8 +1082,7 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
                "mesh in <time>/polyMesh/points, velocities absolute (0/U is absolute: a liquid at rest starts "
                "at -A w relative to the container)\n\n", a.amp2[0], a.amp2[1], a.mo.omega);
     double tb = wall_seconds();
-    for (int d = 0; d < 2; d++)
-        a.d0[d] = a.mo.on ? a.amp2[d] * sin(a.mo.omega * t0) : 0;
+    frame_disp(&a, t0, a.d0);
     if ((rc = make_particles(&a, tname, err)) != UMP_OK)
         goto done;
     if (a.mo.on) {

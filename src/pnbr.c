@@ -34,7 +34,8 @@ void pnbr_free(pnbr *nb)
 }
 
 /* Bin every particle but the hidden ones (need[kind] < 0) on a grid of
- * spacing h over the bounding box of those particles: counting sort, O(N). Particles are clamped into the border
+ * spacing h over the bounding box of those particles: counting sort,
+ * O(N). Particles are clamped into the border
  * bins, which keeps the search exact (a bin may then hold distant
  * particles, which the distance test drops). */
 static ump_status grid_build(pnbr *g, const part_set *s, const unsigned char *kind, const int *need, double h,
