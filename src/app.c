@@ -128,6 +128,8 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->pred_maxit = (int)a->um.pred_maxit;
     s->sort_interval = (int)a->um.sort_interval;
     s->balanced = a->um.buoyancy_balanced;
+    s->refill = a->um.refill_carried ? SOL_REFILL_CARRIED : SOL_REFILL_CENTROID;
+    s->refill_k = (int)a->um.refill_k;
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
     s->p_ref_value = a->so.p_ref_value;
     if (a->bu.on) {

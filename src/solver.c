@@ -72,6 +72,13 @@
  *     Particles that cross an open boundary face (outlets, pressure
  *     inlets) are removed at the end of the step; the empty-cell refill
  *     then repopulates.
+ *   - A particle added to an empty cell (Step 11) takes, by default
+ *     (refill carried), the mean over the K nearest fluid particles of
+ *     their carried values moved to the centroid by the MLS increment of
+ *     the other samples (refill_carried), not the MLS mesh velocity u_P of
+ *     Eq. 36 (refill centroid, the paper's): each refill by u_P replaced a
+ *     carried value by a smoothed one (Taylor-Green at CFL 0.25: 2.5 % of
+ *     the amplitude lost by t = 5).
  *   - Particles are re-sorted by cell after the management of every step
  *     (sortInterval), an O(N) gather from the bins: the particles of a cell
  *     are consecutive, stencil neighbours are near in memory, and the
@@ -144,7 +151,7 @@ typedef struct sol_setup {
 
 /* A gathered neighbour: fluid particle ref >= 0, boundary particle
  * ref = -1 - b. */
-#define SOL_MAX_VALUES 2 /* quantities one MLS fit interpolates (u, v) */
+#define SOL_MAX_VALUES 3 /* quantities one MLS fit interpolates (u, v, T) */
 typedef struct sol_work {
     size_t cap;
     union {                    /* gathered positions (stencil shift applied) */
@@ -191,6 +198,8 @@ typedef struct sol_state {
     double *av;
     size_t rowcap;
     ump_idx *cnt_cell;         /* [ncells] fluid particles in each cell's stencil */
+    ump_idx *empty;            /* [ncells] the cells without a particle (refill_carried) */
+    double *fu, *fv, *fT;      /* [ncells] refill values of those cells */
     lsolve_rows *kry;
     long steps;
 } sol_state;
@@ -218,6 +227,8 @@ void sol_default_settings(sol_settings *s)
     s->p_ref_cell = 0;
     s->p_ref_value = 0;
     s->sort_interval = 1;
+    s->refill = SOL_REFILL_CARRIED;
+    s->refill_k = 5;
     s->t_start = 0;
 }
 
@@ -283,7 +294,8 @@ const char *sol_stage_name(int stage)
 
 static void work_free(sol_work *w)
 {
-    void *arr[] = {w->px, w->py, w->ref, w->h, w->k, w->sref, w->c0, w->cx, w->cy, w->pv, w->gv[0], w->gv[1]};
+    void *arr[] = {w->px, w->py, w->ref, w->h, w->k, w->sref, w->c0, w->cx, w->cy, w->pv, w->gv[0], w->gv[1],
+                   w->gv[2]};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
     memset(w, 0, sizeof *w);
@@ -312,7 +324,8 @@ void sol_free(sol **pS)
                    su->ru_sx, su->ru_sy, su->of_off, su->of_face, st->p, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
-                   st->av, st->cnt_cell, st->pib, st->fluxb, st->pf0, st->gpx, st->gpy};
+                   st->av, st->cnt_cell, st->pib, st->fluxb, st->pf0, st->gpx, st->gpy, st->empty,
+                   st->fu, st->fv, st->fT};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
     if (S->work)
@@ -332,7 +345,8 @@ static ump_status work_reserve(sol_work *w, size_t n, ump_err *err)
     if (n <= w->cap)
         return UMP_OK;
     size_t c = n + n / 2 + 64;
-    double **d[] = {&w->px, &w->py, &w->h, &w->k, &w->c0, &w->cx, &w->cy, &w->pv, &w->gv[0], &w->gv[1]};
+    double **d[] = {&w->px, &w->py, &w->h, &w->k, &w->c0, &w->cx, &w->cy, &w->pv, &w->gv[0], &w->gv[1],
+                    &w->gv[2]};
     for (size_t i = 0; i < sizeof d / sizeof d[0]; i++) {
         double *q = ump_realloc_array(*d[i], c, sizeof(double));
         if (!q)
@@ -969,11 +983,13 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     ump_status rc;
     if (!(S->work = ump_alloc_array((size_t)S->nthreads, sizeof *S->work)))
         goto nomem;
-    double **cellarr[] = {&st->p, &st->uc, &st->vc, &st->usc, &st->vsc, &st->gx, &st->gy, &st->div};
+    double **cellarr[] = {&st->p, &st->uc, &st->vc, &st->usc, &st->vsc, &st->gx, &st->gy, &st->div,
+                          &st->fu, &st->fv, &st->fT};
     for (size_t i = 0; i < sizeof cellarr / sizeof cellarr[0]; i++)
         if (!(*cellarr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
             goto nomem;
     if (!(st->cnt_cell = ump_alloc_array((size_t)nc, sizeof(ump_idx))) ||
+        !(st->empty = ump_alloc_array((size_t)nc, sizeof(ump_idx))) ||
         !(st->flux = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->gflux = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->pf = ump_alloc_array((size_t)nf, sizeof(double))) ||
@@ -1687,6 +1703,134 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
 
 /* ---- Step 11: removal, mesh temperature, management ---------------------------- */
 
+/* Refill values that keep carried velocities (docs/METHOD.md section 8,
+ * "Refill"). [NSH16] Section 3.2.2.2 gives a particle added at the centroid
+ * x_c of an empty cell the mesh velocity u_P of Eq. 36, an MLS fit: each
+ * refill replaces a carried value by a smoothed one (the quadratic fit
+ * lowers the peaks of a sine by O((k r)^4)), and at 5 % of the cells per
+ * step this decayed the Taylor-Green vortex by 2.5 % at t = 5 (README,
+ * "Refill"). Here the new particle takes, from each of the K fluid
+ * particles j nearest x_c in the cell's stencil (before the deletion of
+ * the step, so a surplus particle about to be deleted lends its value),
+ * its carried value moved to x_c by the MLS increment of the others:
+ *     u_c = (1/K) sum_j [ u_j + f_j(x_c) - f_j(x_j) ],
+ * f_j the MLS fit (Eqs. 28-35) of the stencil's samples without j. The fit
+ * without j keeps j's own value out of the increment (with j in it, the
+ * near-singular weight of Eq. 35 at x_j would return u_j). Which cells are
+ * empty does not change in the deletion (it keeps one particle of every
+ * occupied cell), so the values are computed for the cells empty now.
+ * Cells whose stencil has no fluid particle keep u_P. T likewise. */
+static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c, int nv, double *out)
+{
+    const mesh2d *m = su->m;
+    enum { KMAX = 16 };
+    int K = su->set.refill_k < KMAX ? su->set.refill_k : KMAX, nk = 0;
+    size_t cand[KMAX];
+    double cd[KMAX];
+    double xc = m->cx[c], yc = m->cy[c];
+    /* the K nearest fluid samples, by distance, then gathered order */
+    for (size_t j = 0; j < cnt; j++) {
+        if (w->ref[j] < 0)
+            continue;
+        double dx = w->px[j] - xc, dy = w->py[j] - yc, d = dx * dx + dy * dy;
+        int q = nk < K ? nk++ : K;
+        if (q == K) {
+            if (!(d < cd[K - 1]))
+                continue;
+            q = K - 1;
+        }
+        for (; q > 0 && cd[q - 1] > d; q--) {
+            cd[q] = cd[q - 1];
+            cand[q] = cand[q - 1];
+        }
+        cd[q] = d;
+        cand[q] = j;
+    }
+    if (nk == 0 || cnt < 2)
+        return 0;
+    double sum[SOL_MAX_VALUES] = {0};
+    size_t e = cnt - 1;
+    for (int a = 0; a < nk; a++) {
+        /* j to the end: the fits use the first cnt - 1 samples */
+        size_t j = cand[a];
+        double *arr[2 + SOL_MAX_VALUES] = {w->px, w->py, w->gv[0], w->gv[1], w->gv[2]};
+        for (int q = 0; q < 2 + nv; q++) {
+            double t = arr[q][j];
+            arr[q][j] = arr[q][e];
+            arr[q][e] = t;
+        }
+        double xj = w->px[e], yj = w->py[e];
+        for (int at = 0; at < 2; at++) { /* + f_j(x_c), - f_j(x_j) */
+            double x = at ? xj : xc, y = at ? yj : yc, sg = at ? -1 : 1;
+            for (size_t i = 0; i < e; i++) {
+                w->h[i] = w->px[i] - x;
+                w->k[i] = w->py[i] - y;
+            }
+            if (mls_weights(w->h, w->k, (int)e, m->dx[c], m->dy[c], w->c0, NULL, NULL, NULL) != MLS_QUADRATIC)
+                w->mls_fallbacks++;
+            for (int q = 0; q < nv; q++) {
+                double f = 0;
+                for (size_t i = 0; i < e; i++)
+                    f += w->c0[i] * w->gv[q][i];
+                sum[q] += sg * f;
+            }
+        }
+        for (int q = 0; q < nv; q++)
+            sum[q] += w->gv[q][e]; /* + u_j */
+        for (int q = 0; q < 2 + nv; q++) { /* back: the order of later candidates */
+            double t = arr[q][j];
+            arr[q][j] = arr[q][e];
+            arr[q][e] = t;
+        }
+    }
+    for (int q = 0; q < nv; q++)
+        out[q] = sum[q] / nk;
+    return 1;
+}
+
+static ump_status refill_carried(sol *S, sol_stats *stats, ump_err *err)
+{
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    const part_set *P = st->P;
+    ump_idx ne = 0;
+    for (ump_idx c = 0; c < m->ncells; c++)
+        if (st->bins.off[c] == st->bins.off[c + 1])
+            st->empty[ne++] = c;
+    int nv = su->set.buoyant ? 3 : 2;
+    const double *f[3] = {P->u, P->v, P->T}, *g[3] = {st->bp.u, st->bp.v, st->bp.T};
+#pragma omp parallel num_threads(S->nthreads)
+    {
+        sol_work *w = &S->work[thread_id()];
+#pragma omp for schedule(dynamic, 16)
+        for (ump_idx a = 0; a < ne; a++) {
+            if (w->rc != UMP_OK)
+                continue;
+            ump_idx c = st->empty[a];
+            size_t cnt;
+            ump_err e;
+            ump_status rc = gather_cell(su, st, w, c, &cnt, &e);
+            if (rc != UMP_OK) {
+                work_fail(w, rc, &e);
+                continue;
+            }
+            gather_values(w, cnt, nv, f, g);
+            double o[SOL_MAX_VALUES];
+            if (!refill_value(su, w, cnt, c, nv, o)) {
+                o[0] = st->uc[c];
+                o[1] = st->vc[c];
+                o[2] = nv > 2 ? st->Tc[c] : 0;
+            }
+            st->fu[c] = o[0];
+            st->fv[c] = o[1];
+            if (nv > 2)
+                st->fT[c] = o[2];
+        }
+    }
+    return work_collect(S, stats, err);
+}
+
 static ump_status step11_manage(sol *S, sol_stats *stats, ump_err *err)
 {
     const sol_setup *su = &S->su;
@@ -1720,8 +1864,15 @@ static ump_status step11_manage(sol *S, sol_stats *stats, ump_err *err)
         }
         UMP_CALL(work_collect(S, stats, err));
     }
+    const double *fu = st->uc, *fv = st->vc, *fT = st->Tc;
+    if (su->set.refill == SOL_REFILL_CARRIED) {
+        UMP_CALL(refill_carried(S, stats, err));
+        fu = st->fu;
+        fv = st->fv;
+        fT = su->set.buoyant ? st->fT : NULL;
+    }
     part_manage_stats ms;
-    UMP_CALL(part_manage(P, &st->bins, m, su->set.variant, su->set.alpha, st->uc, st->vc, st->Tc, &ms, err));
+    UMP_CALL(part_manage(P, &st->bins, m, su->set.variant, su->set.alpha, fu, fv, fT, &ms, err));
     stats->added = ms.added;
     stats->deleted = ms.deleted_close + ms.deleted_extra;
     stats->np = P->n;

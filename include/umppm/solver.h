@@ -42,6 +42,12 @@
 #include "umppm/mesh2d.h"
 #include "umppm/particles.h"
 
+/* Value of a particle added at the centroid of an empty cell (Step 11):
+ * the mesh velocity u_P of Eq. 36 ([NSH16]), or the carried values of the
+ * nearest particles moved there by the MLS increment (solver.c
+ * refill_carried). */
+typedef enum { SOL_REFILL_CENTROID = 0, SOL_REFILL_CARRIED = 1 } sol_refill;
+
 typedef struct sol_settings {
     double nu;               /* kinematic viscosity */
     part_variant variant;    /* UMPPM (adaptive) or UMPPM* (default) */
@@ -60,6 +66,9 @@ typedef struct sol_settings {
     double beta, t_ref;      /* expansion coefficient [1/K], TRef [K] */
     double kappa;            /* thermal diffusivity nu/Pr [m^2/s] */
     int sort_interval;       /* re-sort particles by cell every N steps (default 1; 0 never) */
+    sol_refill refill;       /* value of a particle added to an empty cell (default carried) */
+    int refill_k;            /* carried: particles whose values are moved to the centroid
+                                (default 5, 1..16) */
     int balanced;            /* buoyant: the predictor carries b - grad pi_b, pi_b the
                                 pressure that balances the buoyancy b (solver.c
                                 balance_buoyancy); 0: b alone, as [NSH16] Eq. 14 */

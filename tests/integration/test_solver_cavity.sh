@@ -7,9 +7,12 @@
 # (tools/cavityValidate.sh). Asserts, against Ghia et al. (1982) Table I/II
 # on the centrelines (15 interior points each):
 #   - RMS error of u and of v < 0.012 on quads (measured 0.004..0.007),
-#     < 0.015 on triangles (measured 0.0116, 0.0125), and at most twice
+#     < 0.010 on triangles (measured 0.0068, 0.0052), and at most twice
 #     icoFoam's RMS error on the same mesh on quads (measured ratios
-#     0.6..1.05), 2.5 times on triangles (measured 1.59 for u, 2.38 for v).
+#     0.64..1.03), 1.5 times on triangles (measured 0.94 for u, 0.98 for v).
+#     With the paper's refill (u_P, refill centroid) the triangle errors
+#     were 0.0116 and 0.0125, 1.59 and 2.38 times icoFoam's, and the
+#     check fails (README, "Refill that keeps carried values").
 #     The triangle bound was 2 (measured 1.94 for v) while particles that
 #     crossed a wall were deleted; stopping them at the wall (src/solver.c
 #     wall_stop) raised this case's v error from 0.0102 to 0.0125. On the
@@ -46,11 +49,11 @@ for run in "quad UMPPMstar fixedValue" "quad UMPPM fixedValue" "tri UMPPMstar mo
     echo "$run: $line"
     get() { kv_get "$line" "$1"; }
     bound=0.012
-    [ "$1" = tri ] && bound=0.015
+    [ "$1" = tri ] && bound=0.010
     for k in u_rms v_rms; do
         check_below "$run $k" "$(get $k)" $bound
         check_below "$run $k / icoFoam's" "$(awk -v a="$(get $k)" -v b="$(get ico_$k)" 'BEGIN { print a / b }')" \
-            "$([ "$1" = tri ] && echo 2.5 || echo 2)"
+            "$([ "$1" = tri ] && echo 1.5 || echo 2)"
     done
     for k in u_max v_max; do check_below "$run $k" "$(get $k)" 0.03; done
     check_below "$run U vs icoFoam L2rel" "$(get UvsIco_L2rel)" 0.1

@@ -9,12 +9,15 @@
 #     inlets, zeroGradient U / fixedValue p outlet, t = 10): runs to the end,
 #     continuity < 1e-12, particles leave through the outlet and the count
 #     stays within 10% of the cell count; against icoFoam on a copy
-#     (postProcess patchAverage of p on each inlet, t = 10): inlet-5
-#     p / icoFoam's < 7.5 (measured 1.160 / 0.201 = 5.8) and inlet-6 < 3.5
-#     (2.426 / 0.874 = 2.8), U relative L2 < 0.40 (0.354). Before wall
-#     stops (particles crossing a wall deleted) these were 11 and 6.4 and
-#     the check fails; the target of issue 14 (within 15 %) is not met
-#     (README, "Accuracy: studies and changes");
+#     (postProcess patchAverage of p on each inlet, t = 10): |inlet-5
+#     p / icoFoam's| < 7.5 (measured -0.595 / 0.201 = -2.95) and |inlet-6|
+#     < 3.5 (0.594 / 0.874 = 0.68), U relative L2 < 0.30 (0.264; 0.354 with
+#     the paper's refill, `refill centroid`). Before wall stops (particles
+#     crossing a wall deleted) the ratios were 11 and 6.4 and the check
+#     fails. The inlet pressures oscillate in time (inlet-6 from 0.6 to 5.9
+#     over t = 6..10; icoFoam 0.87-1.03), so the t = 10 ratios are samples;
+#     the target of issue 14 (within 15 %) is not met (README, "Accuracy:
+#     studies and changes");
 #   - cavityGrade (starts at 0.5, which its Allrun maps from cavity): refused
 #     with one error line naming the controlDict, as icoFoam refuses it.
 # Needs UMPPMFOAM and TOOLDIR (foamCompare).
@@ -70,10 +73,11 @@ if "$UMPPMFOAM" -case "$e" > "$e/log.umppmFoam" 2>&1; then
             echo "  elbow inlet-$k p: umppmFoam $pu, icoFoam $pi"
             bound=7.5
             [ $k = 6 ] && bound=3.5
-            check_below "elbow: inlet-$k p / icoFoam's" "$(awk -v a="$pu" -v b="$pi" 'BEGIN { print a / b }')" $bound
+            check_below "elbow: |inlet-$k p / icoFoam's|" \
+                "$(awk -v a="$pu" -v b="$pi" 'BEGIN { r = a / b; print r < 0 ? -r : r }')" $bound
         done
         rel=$("$TOOLDIR/foamCompare" "$e" 10 "$e/ico" 10 U | awk '$1 == "U" { print $4 }')
-        check_below "elbow: U vs icoFoam, relative L2" "$rel" 0.40
+        check_below "elbow: U vs icoFoam, relative L2" "$rel" 0.30
     else
         fail=1
     fi
