@@ -128,7 +128,11 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->pred_maxit = (int)a->um.pred_maxit;
     s->sort_interval = (int)a->um.sort_interval;
     s->balanced = a->um.buoyancy_balanced;
-    s->refill = a->um.refill_carried ? SOL_REFILL_CARRIED : SOL_REFILL_CENTROID;
+    /* refill auto: carried values with UMPPM*, u_P with UMPPM, where carried
+     * values from several particles grew noise on the Taylor-Green vortex
+     * (README, "Refill that keeps carried values") */
+    int carried = a->um.refill_carried < 0 ? a->um.variant_star : a->um.refill_carried;
+    s->refill = carried ? SOL_REFILL_CARRIED : SOL_REFILL_CENTROID;
     s->refill_k = (int)a->um.refill_k;
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
     s->p_ref_value = a->so.p_ref_value;

@@ -443,8 +443,8 @@ static const char *const ppe_words[] = {"auto", "UMFPACK", "KLU", "CHOLMOD", NUL
 static const char *const pc_words[] = {"ILU0", "Jacobi", "none", NULL};
 static const char *const buoyancy_words[] = {"source", "balanced", NULL};
 static const int buoyancy_values[] = {0, 1};
-static const char *const refill_words[] = {"centroid", "carried", NULL};
-static const int refill_values[] = {0, 1};
+static const char *const refill_words[] = {"auto", "centroid", "carried", NULL};
+static const int refill_values[] = {-1, 0, 1};
 
 #define UM_FIELD(f) offsetof(case_umppm, f), sizeof(((case_umppm *)0)->f)
 #define UM_NORANGE {0, 0, 0, 0, 0, 0, 0}
@@ -482,8 +482,8 @@ static const case_option umppm_options[] = {
      "name of the particle cloud under <time>/lagrangian/", UM_FIELD(cloud_name)},
     {"sortInterval", CASE_OPT_LABEL, "1", 1, NULL, NULL, UM_GE(0),
      "re-sort the particles by cell every N steps; 0: never", UM_FIELD(sort_interval)},
-    {"refill", CASE_OPT_CHOICE, "carried", 1, refill_words, refill_values, UM_NORANGE,
-     "refilled particle's value: carried from its neighbours, or u_P (Eq. 36)",
+    {"refill", CASE_OPT_CHOICE, "auto", -1, refill_words, refill_values, UM_NORANGE,
+     "refilled particle: carried, u_P (centroid, Eq. 36); auto: by variant",
      UM_FIELD(refill_carried)},
     {"refillParticles", CASE_OPT_LABEL, "5", 5, NULL, NULL, UM_1TO16,
      "refill carried: how many nearest particles lend their values", UM_FIELD(refill_k)},

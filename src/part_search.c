@@ -27,7 +27,9 @@
  *             centroid, while deleting the other fluid particles lying on the
  *             same pressure mesh" (Section 4); ties: lower index. O(N).
  *   Both   -- "in the event of detecting an empty pressure mesh, a particle
- *             is added at the mesh centroid" with u = u_P (Eq. 36), T = T_P.
+ *             is added at the mesh centroid" with u = u_P (Eq. 36), T = T_P,
+ *             or with the values a caller's refill function sets for the
+ *             cells left empty (part_manage_refill).
  * Scratch (sort keys, flags) lives in the bins and is grown amortised.
  */
 #include "part_internal.h"
@@ -193,6 +195,13 @@ ump_status part_manage(part_set *s, part_bins *b, const mesh2d *m, part_variant 
                        const double *uc, const double *vc, const double *Tc, part_manage_stats *st,
                        ump_err *err)
 {
+    return part_manage_refill(s, b, m, variant, alpha, NULL, NULL, uc, vc, Tc, st, err);
+}
+
+ump_status part_manage_refill(part_set *s, part_bins *b, const mesh2d *m, part_variant variant, double alpha,
+                              part_refill_fn refill, void *ctx, const double *uc, const double *vc,
+                              const double *Tc, part_manage_stats *st, ump_err *err)
+{
     part_manage_stats z = {0, 0, 0, 0};
     if (st)
         *st = z;
@@ -214,6 +223,9 @@ ump_status part_manage(part_set *s, part_bins *b, const mesh2d *m, part_variant 
         st->deleted_close = delete_close(s, b, m, alpha, keys, flag);
     else
         st->deleted_extra = keep_nearest(s, b, m, flag);
+    /* the refill values, while the bins still hold the deleted particles */
+    if (refill)
+        UMP_CALL(refill(ctx, flag, err));
     part_compact(s, flag);
     UMP_CALL(part_bins_build(b, m, s, err));
     /* Eq. (36): a new particle at the centroid of every empty cell */

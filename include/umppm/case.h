@@ -69,7 +69,7 @@ typedef struct case_solution {
  *   UMPPM { variant UMPPMstar; alpha 0.09; laplacian CPM; reFactor 0;
  *           writeQuality no; ppeSolver auto;
  *           predictorSolver { preconditioner Jacobi; tolerance 1e-12; maxIter 500; }
- *           cloudName umppmCloud; sortInterval 1; refill carried;
+ *           cloudName umppmCloud; sortInterval 1; refill auto;
  *           refillParticles 5; }
  * Its keys, types, defaults, allowed values and help are ONE table,
  * case_umppm_options(): the reader, case_umppm_defaults() and
@@ -92,7 +92,8 @@ typedef struct case_umppm {
     long sort_interval;          /* sortInterval: re-sort the particles by cell
                                     every N steps, 0 never; default 1 */
     int buoyancy_balanced;       /* buoyancy: 1 balanced (default), 0 source */
-    int refill_carried;          /* refill: 1 carried (default), 0 centroid */
+    int refill_carried;          /* refill: 1 carried, 0 centroid, -1 auto (default:
+                                    carried with UMPPM*, centroid with UMPPM) */
     long refill_k;               /* refillParticles: default 5, 1..16 */
     double max_velocity;         /* maxVelocity: divergence bound on |U| of
                                     cells and particles; 0 (default): 100 x

@@ -184,4 +184,15 @@ ump_status part_manage(part_set *s, part_bins *b, const mesh2d *m, part_variant 
                        const double *uc, const double *vc, const double *Tc, part_manage_stats *st,
                        ump_err *err);
 
+/* part_manage with a refill function: after the deletion is decided and
+ * before it is carried out (the bins, built on entry, still hold every
+ * particle), refill(ctx, alive) is called with alive[i] != 0 for the
+ * particles that stay; it may set uc, vc, Tc (the caller's arrays, passed
+ * again here) of the cells that no surviving particle occupies, which
+ * are then refilled with them. NULL: as part_manage. */
+typedef ump_status (*part_refill_fn)(void *ctx, const unsigned char *alive, ump_err *err);
+ump_status part_manage_refill(part_set *s, part_bins *b, const mesh2d *m, part_variant variant, double alpha,
+                              part_refill_fn refill, void *ctx, const double *uc, const double *vc,
+                              const double *Tc, part_manage_stats *st, ump_err *err);
+
 #endif

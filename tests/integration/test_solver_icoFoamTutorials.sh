@@ -9,15 +9,15 @@
 #     inlets, zeroGradient U / fixedValue p outlet, t = 10): runs to the end,
 #     continuity < 1e-12, particles leave through the outlet and the count
 #     stays within 10% of the cell count; against icoFoam on a copy
-#     (postProcess patchAverage of p on each inlet, t = 10): |inlet-5
-#     p / icoFoam's| < 7.5 (measured -0.595 / 0.201 = -2.95) and |inlet-6|
-#     < 3.5 (0.594 / 0.874 = 0.68), U relative L2 < 0.30 (0.264; 0.354 with
-#     the paper's refill, `refill centroid`). Before wall stops (particles
-#     crossing a wall deleted) the ratios were 11 and 6.4 and the check
-#     fails. The inlet pressures oscillate in time (inlet-6 from 0.6 to 5.9
-#     over t = 6..10; icoFoam 0.87-1.03), so the t = 10 ratios are samples;
-#     the target of issue 14 (within 15 %) is not met (README, "Accuracy:
-#     studies and changes");
+#     (postProcess patchAverage of p on each inlet at the written times 6,
+#     7, 8, 9, 10: the inlet pressures oscillate in time, inlet-6 from 1.5
+#     to 5.1, icoFoam 0.87-1.03, so one time is a sample, the mean less
+#     so): |mean inlet-5 p / icoFoam's| < 3 (measured 0.298 / 0.221 = 1.35)
+#     and inlet-6 < 4.5 (3.12 / 0.931 = 3.35); U relative L2 at t = 10 <
+#     0.30 (0.231). With the paper's refill (`refill centroid`) the ratios
+#     are 5.7 and 4.7 and U 0.354, and the check fails. The target of
+#     issue 14 (within 15 %) is not met (README, "Accuracy: studies and
+#     changes");
 #   - cavityGrade (starts at 0.5, which its Allrun maps from cavity): refused
 #     with one error line naming the controlDict, as icoFoam refuses it.
 # Needs UMPPMFOAM and TOOLDIR (foamCompare).
@@ -65,15 +65,18 @@ if "$UMPPMFOAM" -case "$e" > "$e/log.umppmFoam" 2>&1; then
     if run_in "$e/ico" icoFoam icoFoam; then
         for k in 5 6; do
             for d in "$e" "$e/ico"; do
-                run_in "$d" "patchAverage$k" postProcess -func "patchAverage(name=velocity-inlet-$k,p)" -time 10 ||
-                    fail=1
+                run_in "$d" "patchAverage$k" postProcess -func "patchAverage(name=velocity-inlet-$k,p)" \
+                    -time '6:10' || fail=1
             done
-            pu=$(sed -n 's/.*areaAverage(velocity-inlet-'$k') of p = //p' "$e/log.patchAverage$k" | tail -1)
-            pi=$(sed -n 's/.*areaAverage(velocity-inlet-'$k') of p = //p' "$e/ico/log.patchAverage$k" | tail -1)
-            echo "  elbow inlet-$k p: umppmFoam $pu, icoFoam $pi"
-            bound=7.5
-            [ $k = 6 ] && bound=3.5
-            check_below "elbow: |inlet-$k p / icoFoam's|" \
+            # the mean over the written times 6, 7, 8, 9, 10
+            mean() { sed -n 's/.*areaAverage(velocity-inlet-'$k') of p = //p' "$1" |
+                awk '{ s += $1; n++ } END { if (n == 5) print s / n; else print "nan" }'; }
+            pu=$(mean "$e/log.patchAverage$k")
+            pi=$(mean "$e/ico/log.patchAverage$k")
+            echo "  elbow inlet-$k p, mean over t = 6..10: umppmFoam $pu, icoFoam $pi"
+            bound=3
+            [ $k = 6 ] && bound=4.5
+            check_below "elbow: |mean inlet-$k p / icoFoam's|" \
                 "$(awk -v a="$pu" -v b="$pi" 'BEGIN { r = a / b; print r < 0 ? -r : r }')" $bound
         done
         rel=$("$TOOLDIR/foamCompare" "$e" 10 "$e/ico" 10 U | awk '$1 == "U" { print $4 }')
