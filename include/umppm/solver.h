@@ -66,7 +66,8 @@ typedef struct sol_settings {
     double beta, t_ref;      /* expansion coefficient [1/K], TRef [K] */
     double kappa;            /* thermal diffusivity nu/Pr [m^2/s] */
     int sort_interval;       /* re-sort particles by cell every N steps (default 1; 0 never) */
-    sol_refill refill;       /* value of a particle added to an empty cell (default carried) */
+    sol_refill refill;       /* value of a particle added to an empty cell (default carried;
+                                umppmFoam's `refill auto` sets centroid with UMPPM) */
     int refill_k;            /* carried: particles whose values are moved to the centroid
                                 (default 5, 1..16) */
     int balanced;            /* buoyant: the predictor carries b - grad pi_b, pi_b the

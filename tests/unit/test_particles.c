@@ -925,6 +925,85 @@ static void test_manage_umppm(void **state)
     }
 }
 
+/* part_manage_refill: the refill function sees every particle in the bins
+ * with the survivors flagged, and the values it sets for the cells no
+ * survivor occupies are the ones the new particles get, including cells
+ * whose only particle UMPPM deleted (a neighbour's kept one too close). */
+typedef struct refill_probe {
+    const mesh2d *m;
+    const part_set *s;
+    const part_bins *b;
+    double *uc, *vc;
+    size_t calls, emptied, occupied_before;
+} refill_probe;
+
+static ump_status probe_refill(void *ctx, const unsigned char *alive, ump_err *err)
+{
+    (void)err;
+    refill_probe *p = ctx;
+    p->calls++;
+    assert_int_equal((size_t)p->b->off[p->m->ncells], p->s->n); /* every particle still binned */
+    for (ump_idx c = 0; c < p->m->ncells; c++) {
+        int any = 0;
+        for (ump_idx k = p->b->off[c]; k < p->b->off[c + 1]; k++)
+            any |= alive[p->b->idx[k]] != 0;
+        if (!any) {
+            p->uc[c] = 1000.0 + c;
+            p->vc[c] = -1.0 - c;
+            p->emptied++;
+            p->occupied_before += p->b->off[c + 1] > p->b->off[c];
+        }
+    }
+    return UMP_OK;
+}
+
+static void test_manage_refill_fn(void **state)
+{
+    (void)state;
+    rng_seed(17);
+    tmesh t = build_grid(12, 0.2, kind_hybrid, 0);
+    const mesh2d *m = t.m;
+    size_t nc = (size_t)m->ncells;
+    part_set *s = NULL;
+    ump_err err;
+    assert_int_equal(part_create(0, &s, &err), UMP_OK);
+    for (size_t i = 0; i < 3 * nc; i++) {
+        ump_idx c = (ump_idx)irand((long)nc);
+        if (c % 4 == 0)
+            continue; /* some cells start empty */
+        double x, y;
+        point_in_cell(m, c, &x, &y);
+        assert_int_equal(part_add(s, x, y, 0, 0, 0, c, NULL, &err), UMP_OK);
+    }
+    double *uc = calloc(nc, sizeof(double)), *vc = calloc(nc, sizeof(double));
+    part_bins b = {0};
+    part_manage_stats st;
+    refill_probe p = {m, s, &b, uc, vc, 0, 0, 0};
+    assert_int_equal(part_manage_refill(s, &b, m, PART_UMPPM, 0.3, probe_refill, &p, uc, vc, NULL, &st, &err),
+                     UMP_OK);
+    assert_int_equal(p.calls, 1);
+    assert_int_equal(p.emptied, st.added);
+    assert_true(p.occupied_before > 0); /* UMPPM emptied some occupied cells */
+    check_bins(m, s, &b);
+    size_t seen = 0;
+    for (ump_idx c = 0; c < m->ncells; c++)
+        for (ump_idx k = b.off[c]; k < b.off[c + 1]; k++) {
+            size_t i = b.idx[k];
+            if (s->x[i] == m->cx[c] && s->y[i] == m->cy[c] && s->u[i] >= 1000) {
+                assert_true(s->u[i] == 1000.0 + c && s->v[i] == -1.0 - c);
+                seen++;
+            }
+        }
+    assert_int_equal(seen, st.added);
+    print_message("refill function: %zu cells refilled, %zu of them emptied by the deletion\n", st.added,
+                  p.occupied_before);
+    free(uc);
+    free(vc);
+    part_bins_free(&b);
+    part_free(&s);
+    tmesh_free(&t);
+}
+
 static void test_manage_star(void **state)
 {
     (void)state;
@@ -1077,6 +1156,7 @@ int main(void)
         cmocka_unit_test(test_neighbours),
         cmocka_unit_test(test_manage_umppm),
         cmocka_unit_test(test_manage_star),
+        cmocka_unit_test(test_manage_refill_fn),
         cmocka_unit_test(test_timings),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
