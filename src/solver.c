@@ -1498,6 +1498,19 @@ static void gather_values(sol_work *w, size_t cnt, int nv, const double *const *
     }
 }
 
+/* Swap gathered samples a and b (position, ref and the nv values): the fits
+ * leave a sample out by moving it to the end. */
+static void sample_swap(sol_work *w, size_t a, size_t b, int nv)
+{
+    double t;
+    t = w->px[a], w->px[a] = w->px[b], w->px[b] = t;
+    t = w->py[a], w->py[a] = w->py[b], w->py[b] = t;
+    ump_idx r = w->ref[a];
+    w->ref[a] = w->ref[b], w->ref[b] = r;
+    for (int q = 0; q < nv; q++)
+        t = w->gv[q][a], w->gv[q][a] = w->gv[q][b], w->gv[q][b] = t;
+}
+
 /* MLS values (Eq. 32) at (x, y) from the gathered samples and their
  * gather_values; the boundary particle of face skip_bface (-1: none) is
  * left out by moving it to the end of the gathered arrays (the order of
@@ -1511,15 +1524,8 @@ static void mls_fit_values(sol_work *w, size_t cnt, double x, double y, double m
         ump_idx r = -1 - skip_bface;
         for (size_t j = 0; j < n; j++)
             if (w->ref[j] == r) {
-                size_t e = n - 1;
-                double t;
-                t = w->px[j], w->px[j] = w->px[e], w->px[e] = t;
-                t = w->py[j], w->py[j] = w->py[e], w->py[e] = t;
-                ump_idx ti = w->ref[j];
-                w->ref[j] = w->ref[e], w->ref[e] = ti;
-                for (int q = 0; q < nv; q++)
-                    t = w->gv[q][j], w->gv[q][j] = w->gv[q][e], w->gv[q][e] = t;
-                n = e;
+                sample_swap(w, j, n - 1, nv);
+                n--;
                 break;
             }
     }
@@ -1763,12 +1769,7 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
         wsum += wa;
         /* j to the end: the fits use the first cnt - 1 samples */
         size_t j = cand[a];
-        double *arr[2 + SOL_MAX_VALUES] = {w->px, w->py, w->gv[0], w->gv[1], w->gv[2]};
-        for (int q = 0; q < 2 + nv; q++) {
-            double t = arr[q][j];
-            arr[q][j] = arr[q][e];
-            arr[q][e] = t;
-        }
+        sample_swap(w, j, e, nv);
         double xj = w->px[e], yj = w->py[e];
         for (int at = 0; at < 2; at++) { /* + f_j(x_c), - f_j(x_j) */
             double x = at ? xj : xc, y = at ? yj : yc, sg = at ? -1 : 1;
@@ -1787,11 +1788,7 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
         }
         for (int q = 0; q < nv; q++)
             sum[q] += wa * w->gv[q][e]; /* + u_j */
-        for (int q = 0; q < 2 + nv; q++) { /* back: the order of later candidates */
-            double t = arr[q][j];
-            arr[q][j] = arr[q][e];
-            arr[q][e] = t;
-        }
+        sample_swap(w, j, e, nv); /* back: the order of later candidates */
     }
     for (int q = 0; q < nv; q++)
         out[q] = sum[q] / wsum;

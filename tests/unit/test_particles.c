@@ -925,6 +925,25 @@ static void test_manage_umppm(void **state)
     }
 }
 
+/* A cloud of about n_per * ncells particles at random points of random
+ * cells, leaving out the cells c with c % skip == 0 (they start empty). */
+static part_set *random_cloud(const mesh2d *m, size_t n_per, ump_idx skip)
+{
+    part_set *s = NULL;
+    ump_err err;
+    assert_int_equal(part_create(0, &s, &err), UMP_OK);
+    size_t nc = (size_t)m->ncells;
+    for (size_t i = 0; i < n_per * nc; i++) {
+        ump_idx c = (ump_idx)irand((long)nc);
+        if (c % skip == 0)
+            continue;
+        double x, y;
+        point_in_cell(m, c, &x, &y);
+        assert_int_equal(part_add(s, x, y, 0, 0, 0, c, NULL, &err), UMP_OK);
+    }
+    return s;
+}
+
 /* part_manage_refill: the refill function sees every particle in the bins
  * with the survivors flagged, and the values it sets for the cells no
  * survivor occupies are the ones the new particles get, including cells
@@ -964,17 +983,8 @@ static void test_manage_refill_fn(void **state)
     tmesh t = build_grid(12, 0.2, kind_hybrid, 0);
     const mesh2d *m = t.m;
     size_t nc = (size_t)m->ncells;
-    part_set *s = NULL;
+    part_set *s = random_cloud(m, 3, 4); /* some cells start empty */
     ump_err err;
-    assert_int_equal(part_create(0, &s, &err), UMP_OK);
-    for (size_t i = 0; i < 3 * nc; i++) {
-        ump_idx c = (ump_idx)irand((long)nc);
-        if (c % 4 == 0)
-            continue; /* some cells start empty */
-        double x, y;
-        point_in_cell(m, c, &x, &y);
-        assert_int_equal(part_add(s, x, y, 0, 0, 0, c, NULL, &err), UMP_OK);
-    }
     double *uc = calloc(nc, sizeof(double)), *vc = calloc(nc, sizeof(double));
     part_bins b = {0};
     part_manage_stats st;
@@ -1011,17 +1021,8 @@ static void test_manage_star(void **state)
     tmesh t = build_grid(12, 0.2, kind_hybrid, 0);
     const mesh2d *m = t.m;
     size_t nc = (size_t)m->ncells;
-    part_set *s = NULL;
+    part_set *s = random_cloud(m, 4, 5); /* some cells stay empty */
     ump_err err;
-    assert_int_equal(part_create(0, &s, &err), UMP_OK);
-    for (size_t i = 0; i < 4 * nc; i++) {
-        ump_idx c = (ump_idx)irand((long)nc);
-        if (c % 5 == 0)
-            continue; /* some cells stay empty */
-        double x, y;
-        point_in_cell(m, c, &x, &y);
-        assert_int_equal(part_add(s, x, y, 0, 0, 0, c, NULL, &err), UMP_OK);
-    }
     /* a tie: a copy of particle 0 (the lower index must win if 0 is nearest) */
     assert_int_equal(part_add(s, s->x[0], s->y[0], 0, 0, 0, s->cell[0], NULL, &err), UMP_OK);
     /* expected survivor per cell: nearest to the centroid, lower index on ties */
