@@ -29,18 +29,19 @@
 
 #include <math.h>
 
-/* Eq. (35) in normalised coordinates, clamped to [MLS_W_MIN, MLS_W_MAX]:
+/* Eq. (35) in normalised coordinates, clamped to [wmin, MLS_W_MAX]
+ * (wmin: MLS_W_MIN with Eq. 35's scales, MLS_W_CUT with a fixed support):
  * w = 1/rho - 1, rho = sqrt(X^2 + Y^2). A sample on the target (rho = 0,
  * 1/rho = inf) and every rho <= 1/(1 + w_max) get the cap, so nothing
  * divides by zero; the floor keeps the corner samples (rho >= 1, where
  * Eq. 35 is zero or negative) in the fit with a small positive weight. The
  * clamped weight is continuous in the sample positions. Written with
  * conditional expressions (minsd/maxsd), not fmin/fmax calls. */
-static inline double weight(double X, double Y)
+static inline double weight(double X, double Y, double wmin)
 {
     double w = 1 / sqrt(X * X + Y * Y) - 1;
     w = w < MLS_W_MAX ? w : MLS_W_MAX;
-    return w > MLS_W_MIN ? w : MLS_W_MIN;
+    return w > wmin ? w : wmin;
 }
 
 /* The 15 weighted moments sum_j w_j X^a Y^b, a + b <= 4, by degree:
@@ -135,11 +136,19 @@ static inline __attribute__((always_inline)) void columns(const spd_small *f, in
 /* Eq. 35's scales 1/x_m, 1/y_m: x_m = max|dx_j| + mean dx, y_m likewise. A
  * non-positive or non-finite mean counts as 0; a zero extent (all samples
  * on one line through the target) borrows the other one, so X, Y stay
- * finite and the degeneracy shows up as a singular normal matrix instead. */
-static inline __attribute__((always_inline)) void scales(const double *restrict dx, const double *restrict dy,
-                                                         int n, double mean_dx, double mean_dy, double *ixm,
-                                                         double *iym)
+ * finite and the degeneracy shows up as a singular normal matrix instead.
+ * Both means negative: a fixed support, x_m = -mean_dx, y_m = -mean_dy
+ * (docs/METHOD.md section 8, "MLS support"), and the weight floor
+ * MLS_W_CUT. Returns the floor. */
+static inline __attribute__((always_inline)) double scales(const double *restrict dx, const double *restrict dy,
+                                                           int n, double mean_dx, double mean_dy, double *ixm,
+                                                           double *iym)
 {
+    if (mean_dx < 0 && mean_dy < 0 && mean_dx > -INFINITY && mean_dy > -INFINITY) {
+        *ixm = -1 / mean_dx;
+        *iym = -1 / mean_dy;
+        return MLS_W_CUT;
+    }
     double mx = 0, my = 0;
 #pragma omp simd reduction(max : mx, my)
     for (int j = 0; j < n; j++) {
@@ -155,6 +164,7 @@ static inline __attribute__((always_inline)) void scales(const double *restrict 
         ym = xm;
     *ixm = 1 / xm;
     *iym = 1 / ym;
+    return MLS_W_MIN;
 }
 
 /* Eq. 35's scales and pass 1: weights (parked in w) and the 15 moments. */
@@ -162,7 +172,7 @@ static inline __attribute__((always_inline)) void prepare(const double *restrict
                     double mean_dy, double *restrict w, double *m, double *pixm, double *piym)
 {
     double ixm, iym;
-    scales(dx, dy, n, mean_dx, mean_dy, &ixm, &iym);
+    double wmin = scales(dx, dy, n, mean_dx, mean_dy, &ixm, &iym);
     /* scalar accumulators: they stay in registers */
     double s1 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0, sxxx = 0, sxxy = 0, sxyy = 0, syyy = 0,
            sx4 = 0, sx3y = 0, sx2y2 = 0, sxy3 = 0, sy4 = 0;
@@ -172,7 +182,7 @@ static inline __attribute__((always_inline)) void prepare(const double *restrict
 #pragma omp simd reduction(+ : s1, sx, sy, sxx, sxy, syy, sxxx, sxxy, sxyy, syyy, sx4, sx3y, sx2y2, sxy3, sy4)
     for (int j = 0; j < n; j++) {
         double X = dx[j] * ixm, Y = dy[j] * iym;
-        double wj = weight(X, Y);
+        double wj = weight(X, Y, wmin);
         double wx = wj * X, wy = wj * Y;
         double wxx = wx * X, wxy = wx * Y, wyy = wy * Y;
         double wxxx = wxx * X, wxxy = wxx * Y, wxyy = wxy * Y, wyyy = wyy * Y;
@@ -276,7 +286,7 @@ mls_basis mls_gradient(const double *restrict dx, const double *restrict dy, con
     if (n <= 0)
         return MLS_NONE;
     double ixm, iym;
-    scales(dx, dy, n, mean_dx, mean_dy, &ixm, &iym);
+    double wmin = scales(dx, dy, n, mean_dx, mean_dy, &ixm, &iym);
     /* one pass: the moments of A (Eq. 30) and B = sum_j w_j u_j R_j (Eq. 31) */
     double s1 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0, sxxx = 0, sxxy = 0, sxyy = 0, syyy = 0,
            sx4 = 0, sx3y = 0, sx2y2 = 0, sxy3 = 0, sy4 = 0;
@@ -285,7 +295,7 @@ mls_basis mls_gradient(const double *restrict dx, const double *restrict dy, con
                                b0, b1, b2, b3, b4, b5)
     for (int j = 0; j < n; j++) {
         double X = dx[j] * ixm, Y = dy[j] * iym;
-        double wj = weight(X, Y);
+        double wj = weight(X, Y, wmin);
         double wx = wj * X, wy = wj * Y;
         double wxx = wx * X, wxy = wx * Y, wyy = wy * Y;
         double wxxx = wxx * X, wxxy = wxx * Y, wxyy = wxy * Y, wyyy = wyy * Y;

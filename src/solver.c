@@ -1145,6 +1145,16 @@ void sol_set_pressure(sol *S, const double *p)
     memcpy(S->st.p, p, (size_t)S->su.m->ncells * sizeof *S->st.p);
 }
 
+/* The mean cell extent e passed to the MLS fits as Eq. 35's Delta-bar, or,
+ * with mlsSupport r > 0, the fixed support r e (passed negative, mls.h):
+ * Eq. 35's x_m = max_j |dx_j| + Delta-bar jumps when a particle enters or
+ * leaves the stencil, a fixed support does not (docs/METHOD.md section 8,
+ * "MLS support"). */
+static inline double mls_extent(const sol_setup *su, double e)
+{
+    return su->set.mls_support > 0 ? -su->set.mls_support * e : e;
+}
+
 /* grad p at every particle's position (P->x, P->y): the MLS derivative
  * (Eqs. 33-34) of the centroid values p of the particle's cell and its N2
  * stencil (Eq. 10's pressure gradient). Returns the count of fits that fell
@@ -1170,7 +1180,8 @@ static long particle_pressure_gradient(sol *S, const double *p, double *gxo, dou
                 w->k[nn] = m->cy[q] + (su->st_sy ? su->st_sy[a] : 0) - y;
                 w->pv[nn++] = p[q];
             }
-            if (mls_gradient(w->h, w->k, w->pv, nn, m->dx[c], m->dy[c], &gxo[i], &gyo[i], NULL) !=
+            if (mls_gradient(w->h, w->k, w->pv, nn, mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), &gxo[i],
+                             &gyo[i], NULL) !=
                 MLS_QUADRATIC)
                 fb++;
         }
@@ -1584,7 +1595,8 @@ static void step8_mls_velocity(sol *S)
             }
             double uv[2];
             gather_values(w, cnt, 2, f, g);
-            mls_fit_values(w, cnt, m->cx[c], m->cy[c], m->dx[c], m->dy[c], -1, 2, uv);
+            mls_fit_values(w, cnt, m->cx[c], m->cy[c], mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), -1, 2,
+                           uv);
             st->usc[c] = uv[0];
             st->vsc[c] = uv[1];
             for (ump_idx a = su->of_off[c]; a < su->of_off[c + 1]; a++) {
@@ -1594,7 +1606,8 @@ static void step8_mls_velocity(sol *S)
                     mdx = 0.5 * (mdx + m->dx[m->neigh[fa]]);
                     mdy = 0.5 * (mdy + m->dy[m->neigh[fa]]);
                 }
-                mls_fit_values(w, cnt, m->fx[fa], m->fy[fa], mdx, mdy, fa >= ni ? fa - ni : -1, 2, uv);
+                mls_fit_values(w, cnt, m->fx[fa], m->fy[fa], mls_extent(su, mdx), mls_extent(su, mdy),
+                               fa >= ni ? fa - ni : -1, 2, uv);
                 st->flux[fa] = (uv[0] * m->nx[fa] + uv[1] * m->ny[fa]) * m->len[fa]; /* u*_f . A_f, Eq. 20 */
             }
         }
@@ -1777,7 +1790,8 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
                 w->h[i] = w->px[i] - x;
                 w->k[i] = w->py[i] - y;
             }
-            if (mls_weights(w->h, w->k, (int)e, m->dx[c], m->dy[c], w->c0, NULL, NULL, NULL) != MLS_QUADRATIC)
+            if (mls_weights(w->h, w->k, (int)e, mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), w->c0, NULL, NULL,
+                            NULL) != MLS_QUADRATIC)
                 w->mls_fallbacks++;
             for (int q = 0; q < nv; q++) {
                 double f = 0;
@@ -1879,7 +1893,8 @@ static ump_status step11_manage(sol *S, sol_stats *stats, ump_err *err)
                     continue;
                 }
                 gather_values(w, cnt, 1, f, g);
-                mls_fit_values(w, cnt, m->cx[c], m->cy[c], m->dx[c], m->dy[c], -1, 1, &st->Tc[c]);
+                mls_fit_values(w, cnt, m->cx[c], m->cy[c], mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), -1, 1,
+                               &st->Tc[c]);
             }
         }
         UMP_CALL(work_collect(S, stats, err));

@@ -43,6 +43,10 @@
  *     is continuous in the sample positions. */
 #define MLS_W_MAX 1.0e6
 #define MLS_W_MIN 1.0e-2
+/* Floor of the weight with a fixed support (mean extents passed negative):
+ * samples at rho >= 1 are practically out of the fit, so a sample entering
+ * or leaving the caller's stencil there does not change the fit. */
+#define MLS_W_CUT 1.0e-8
 /* Fall back to the next smaller basis when the reciprocal 1-norm condition
  * number of the equilibrated normal matrix is below this. */
 #define MLS_RCOND_MIN 1.0e-10
@@ -59,7 +63,10 @@ typedef struct mls_info {
 /* Coefficients for n samples at offsets (dx[j], dy[j]) from the target
  * (sample minus target). Outputs c0, cx, cy [n] (cx, cy may be NULL):
  *   value ~ sum_j c0[j] u_j,  du/dx ~ sum_j cx[j] u_j,  du/dy ~ sum_j cy[j] u_j.
- * mean_dx, mean_dy > 0: the Delta-bar of Eq. 35. Returns the basis used
+ * mean_dx, mean_dy > 0: the Delta-bar of Eq. 35 (x_m = max_j |dx_j| +
+ * mean_dx); both < 0: a fixed support x_m = -mean_dx, y_m = -mean_dy, the
+ * same weight 1/rho - 1 floored at MLS_W_CUT (continuous in the sample
+ * positions; docs/METHOD.md section 8, "MLS support"). Returns the basis used
  * (MLS_NONE only when n <= 0; outputs then untouched). With MLS_SHEPARD,
  * cx and cy are set to 0 (no derivative information). info may be NULL.
  * No allocation; any n works (see MLS_MAX_SAMPLES). */

@@ -81,6 +81,63 @@ static mls_basis check_quad(const quad *f, double x0, double y0, const double *d
 
 /* ---- exactness -------------------------------------------------------- */
 
+/* A fixed support (mean extents passed negative, mlsSupport of umppmFoam):
+ * quadratics are still reproduced on random clouds whose samples fill the
+ * support, a sample outside it (rho >= 1) gets practically no weight, and a
+ * sample entering the set there changes the fit by the floor's order only.
+ * With Eq. 35's scales (x_m = max |dx_j| + Delta-bar) the same sample
+ * changes x_m and enters with an O(1) weight. */
+static void test_fixed_support(void **state)
+{
+    (void)state;
+    tu_rng_seed(7);
+    double dx[NMAX], dy[NMAX], u[NMAX], c0[NMAX];
+    int nquad = 0;
+    for (int t = 0; t < 200; t++) {
+        int n = 20 + (int)(tu_rnd() * 21);
+        double h = pow(10, tu_rnd_in(-3, 2)), ax = tu_rnd_in(0.5, 2);
+        for (int j = 0; j < n; j++) {
+            dx[j] = tu_rnd_in(-1.6, 1.6) * h * ax;
+            dy[j] = tu_rnd_in(-1.6, 1.6) * h;
+        }
+        quad f = rnd_quad();
+        for (int i = 1; i < 6; i++)
+            f.q[i] /= (i < 3 ? h : h * h);
+        if (check_quad(&f, 0, 0, dx, dy, n, -2 * h * ax, -2 * h, 1e-11) == MLS_QUADRATIC)
+            nquad++;
+    }
+    print_message("fixed support, random clouds: %d/200 quadratic\n", nquad);
+    assert_true(nquad >= 195);
+
+    /* 24 samples inside radius 2 (h = 1); one more appears just outside it,
+     * as a particle entering a cell's stencil: the fixed support's value is
+     * unchanged to the floor's order; Eq. 35's scales grow with it and the
+     * value moves */
+    int n = 25;
+    for (int j = 0; j < n - 1; j++) {
+        double r = 1.7 * sqrt(tu_rnd()), a = 2 * M_PI * tu_rnd();
+        dx[j] = r * cos(a);
+        dy[j] = r * sin(a);
+    }
+    dx[n - 1] = 2.05;
+    dy[n - 1] = 0.3;
+    for (int j = 0; j < n; j++)
+        u[j] = sin(dx[j]) * cos(0.7 * dy[j]);
+    double v[2][2];
+    for (int paper = 0; paper < 2; paper++)
+        for (int with = 0; with < 2; with++) {
+            double e = paper ? 1 : -2;
+            assert_int_equal(mls_weights(dx, dy, n - 1 + with, e, e, c0, NULL, NULL, NULL), MLS_QUADRATIC);
+            v[paper][with] = dot(c0, u, n - 1 + with);
+        }
+    double d_fixed = fabs(v[0][1] - v[0][0]), d_paper = fabs(v[1][1] - v[1][0]);
+    print_message("a sample entering at rho 1.03: value changes by %.3g (fixed support), %.3g (Eq. 35's scales)\n",
+                  d_fixed, d_paper);
+    assert_true(d_fixed < 1e-7);
+    assert_true(d_paper > 100 * d_fixed);
+}
+
+
 static void test_quadratic_random_clouds(void **state)
 {
     (void)state;
@@ -479,6 +536,7 @@ int main(void)
         cmocka_unit_test(test_oracle),
         cmocka_unit_test(test_scale_invariance),
         cmocka_unit_test(test_sample_on_target),
+        cmocka_unit_test(test_fixed_support),
         cmocka_unit_test(test_convergence),
         cmocka_unit_test(test_timing),
     };
