@@ -229,6 +229,7 @@ void sol_default_settings(sol_settings *s)
     s->sort_interval = 1;
     s->refill = SOL_REFILL_CARRIED;
     s->refill_k = 5;
+    s->mls_support = 2;
     s->t_start = 0;
 }
 

@@ -44,9 +44,14 @@
 #define MLS_W_MAX 1.0e6
 #define MLS_W_MIN 1.0e-2
 /* Floor of the weight with a fixed support (mean extents passed negative):
- * samples at rho >= 1 are practically out of the fit, so a sample entering
- * or leaving the caller's stencil there does not change the fit. */
-#define MLS_W_CUT 1.0e-8
+ * samples at rho >= 1 are practically out of the fit (a sample entering or
+ * leaving the caller's stencil there moves the fit by O(1e-4) of the
+ * value's variation; Eq. 35's scales: O(1e-2)), yet they still keep the
+ * normal matrix away from singular when the support holds few samples.
+ * With a floor of 1e-8 such fits passed MLS_RCOND_MIN while resting on
+ * 3-5 samples: the stably stratified rest state with `buoyancy source`
+ * diverged at t = 810 s. */
+#define MLS_W_CUT 1.0e-4
 /* Fall back to the next smaller basis when the reciprocal 1-norm condition
  * number of the equilibrated normal matrix is below this. */
 #define MLS_RCOND_MIN 1.0e-10

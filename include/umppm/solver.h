@@ -70,10 +70,10 @@ typedef struct sol_settings {
                                 umppmFoam's `refill auto` sets centroid with UMPPM) */
     int refill_k;            /* carried: particles whose values are moved to the centroid
                                 (default 5, 1..16) */
-    double mls_support;      /* 0 (default): the MLS weight scales of Eq. 35 (farthest
-                                sample + cell extent); > 0: a fixed support of that
-                                many cell extents, continuous in the particle
-                                positions (docs/METHOD.md section 8) */
+    double mls_support;      /* > 0: the MLS weight has a fixed support of that many
+                                cell extents, continuous in the particle positions
+                                (default 2; docs/METHOD.md section 8); 0: Eq. 35's
+                                scales (farthest sample + cell extent) */
     int balanced;            /* buoyant: the predictor carries b - grad pi_b, pi_b the
                                 pressure that balances the buoyancy b (solver.c
                                 balance_buoyancy); 0: b alone, as [NSH16] Eq. 14 */

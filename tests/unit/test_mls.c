@@ -84,7 +84,8 @@ static mls_basis check_quad(const quad *f, double x0, double y0, const double *d
 /* A fixed support (mean extents passed negative, mlsSupport of umppmFoam):
  * quadratics are still reproduced on random clouds whose samples fill the
  * support, a sample outside it (rho >= 1) gets practically no weight, and a
- * sample entering the set there changes the fit by the floor's order only.
+ * sample entering the set there changes the fit by the floor's order only
+ * (MLS_W_CUT).
  * With Eq. 35's scales (x_m = max |dx_j| + Delta-bar) the same sample
  * changes x_m and enters with an O(1) weight. */
 static void test_fixed_support(void **state)
@@ -133,7 +134,7 @@ static void test_fixed_support(void **state)
     double d_fixed = fabs(v[0][1] - v[0][0]), d_paper = fabs(v[1][1] - v[1][0]);
     print_message("a sample entering at rho 1.03: value changes by %.3g (fixed support), %.3g (Eq. 35's scales)\n",
                   d_fixed, d_paper);
-    assert_true(d_fixed < 1e-7);
+    assert_true(d_fixed < 1e-4);
     assert_true(d_paper > 100 * d_fixed);
 }
 
