@@ -16,9 +16,9 @@
 #     reproduces the straight run at 0.2 to 1e-10 relative;
 #   - the paper's step, CFL 0.25 (dt = 0.25 l_avg / U, l_avg = 1/40), on
 #     N_m = 1600 to t = 5: Eq. 41 < 0.02, the paper's figure (measured
-#     0.0124), and L2 relative error < 0.035 (measured 0.026: the fixed MLS
-#     support of 2 cell extents, the default, smooths the vortex by 2.6 %
-#     at this resolution; README, "MLS support");
+#     0.0124), and L2 relative error < 0.035 (measured 0.026: with the
+#     fixed MLS support of 2 cell extents, the default, the amplitude is
+#     2.6 % too high at t = 5 on this mesh; README, "MLS support");
 #   - the same with Eq. 35's own scales (mlsSupport 0): L2 < 0.006
 #     (measured 0.0043). With the paper's refill (u_P, refill centroid)
 #     this was 0.0165 and the check fails (README, "Refill that keeps
