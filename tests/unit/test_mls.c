@@ -81,6 +81,26 @@ static mls_basis check_quad(const quad *f, double x0, double y0, const double *d
 
 /* ---- exactness -------------------------------------------------------- */
 
+/* n samples uniform in the box |dx| < half h ax, |dy| < half h (cells of
+ * size h ax by h) */
+static void box_cloud(double *dx, double *dy, int n, double half, double h, double ax)
+{
+    for (int j = 0; j < n; j++) {
+        dx[j] = tu_rnd_in(-half, half) * h * ax;
+        dy[j] = tu_rnd_in(-half, half) * h;
+    }
+}
+
+/* a random quadratic rescaled to vary O(1) over a stencil of size h */
+static quad scaled_quad(double h)
+{
+    quad f = rnd_quad();
+    for (int i = 1; i < 6; i++)
+        f.q[i] /= (i < 3 ? h : h * h);
+    return f;
+}
+
+
 /* A fixed support (mean extents passed negative, mlsSupport of umppmFoam):
  * quadratics are still reproduced on random clouds whose samples fill the
  * support, a sample outside it (rho >= 1) gets practically no weight, and a
@@ -97,13 +117,8 @@ static void test_fixed_support(void **state)
     for (int t = 0; t < 200; t++) {
         int n = 20 + (int)(tu_rnd() * 21);
         double h = pow(10, tu_rnd_in(-3, 2)), ax = tu_rnd_in(0.5, 2);
-        for (int j = 0; j < n; j++) {
-            dx[j] = tu_rnd_in(-1.6, 1.6) * h * ax;
-            dy[j] = tu_rnd_in(-1.6, 1.6) * h;
-        }
-        quad f = rnd_quad();
-        for (int i = 1; i < 6; i++)
-            f.q[i] /= (i < 3 ? h : h * h);
+        box_cloud(dx, dy, n, 1.6, h, ax);
+        quad f = scaled_quad(h);
         if (check_quad(&f, 0, 0, dx, dy, n, -2 * h * ax, -2 * h, 1e-11) == MLS_QUADRATIC)
             nquad++;
     }
@@ -151,14 +166,8 @@ static void test_quadratic_random_clouds(void **state)
         double h = pow(10, tu_rnd_in(-3, 2));
         double ax = tu_rnd_in(0.5, 2); /* anisotropic cells */
         double x0 = tu_rnd_in(-5, 5) * h * 10, y0 = tu_rnd_in(-5, 5) * h * 10;
-        for (int j = 0; j < n; j++) {
-            dx[j] = tu_rnd_in(-2.5, 2.5) * h * ax;
-            dy[j] = tu_rnd_in(-2.5, 2.5) * h;
-        }
-        quad f = rnd_quad();
-        /* rescale f so it varies O(1) over the stencil */
-        for (int i = 1; i < 6; i++)
-            f.q[i] /= (i < 3 ? h : h * h);
+        box_cloud(dx, dy, n, 2.5, h, ax);
+        quad f = scaled_quad(h);
         mls_info info;
         double c0[NMAX];
         mls_weights(dx, dy, n, h * ax, h, c0, NULL, NULL, &info);
@@ -222,9 +231,7 @@ static void test_quadratic_triangle_mesh(void **state)
             ey[ne++] = 0.5 * (vy[i][j] + vy[i + 1][j + 1]);
         }
     double mdx = sdx / nt, mdy = sdy / nt;
-    quad f = rnd_quad();
-    for (int i = 1; i < 6; i++)
-        f.q[i] /= (i < 3 ? h : h * h);
+    quad f = scaled_quad(h);
     int ntarget = 0;
     for (int pass = 0; pass < 2; pass++) {
         int nn = pass ? nt : ne;
