@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # bench/taylorGreen.sh [-variant UMPPMstar] [-maxCo 0.25 | -deltaT DT | -cfl C] [-endTime 5]
-#                      [-laplacian CPM] [-icoFoam no] [n ...]
+#                      [-laplacian CPM] [-U 1] [-umppm "key value; ..."] [-icoFoam no] [n ...]
 # The Taylor-Green vortex of Section 4.1 of Ng, Sheu & Hwang (2016) (Re = 100,
 # periodic unit square, crossed triangles of Fig. 7: N_m = 4 n^2) for each n
 # (default 20 40 80: N_m = 1600 6400 25600), CFL maxCo (adjustTimeStep,
@@ -10,12 +10,15 @@
 # area) = 1/(2n), to endTime. Prints per run: N_m, particles, steps, seconds,
 # us per particle-step, peak RSS, and the errors at endTime
 # (tools/taylorGreenError.py): L2rel, decay error vs the sampled max, Eq. 41,
-# Eq. 42; then the observed orders between successive meshes. With -icoFoam
+# Eq. 42, and the signed amplitude error amp (> 0: decays too slowly); then
+# the observed orders between successive meshes. -U scales the initial vortex
+# (the step stays the one for U = 1: -U 0.01 is nearly Stokes flow, which
+# isolates the viscous errors); -umppm adds entries to the UMPPM dictionary. With -icoFoam
 # yes, icoFoam runs the same case (same mesh and 0/, fixed deltaT = the mean of
 # umppmFoam's steps) and its errors and time are printed below each row.
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
-variant=UMPPMstar maxCo=0.25 deltaT="" cfl="" endTime=5 lap=CPM ico=no
+variant=UMPPMstar maxCo=0.25 deltaT="" cfl="" endTime=5 lap=CPM ico=no U0=1 extra=
 while [ $# -gt 0 ]; do
     case $1 in
     -variant) variant=$2; shift 2 ;;
@@ -25,6 +28,8 @@ while [ $# -gt 0 ]; do
     -endTime) endTime=$2; shift 2 ;;
     -laplacian) lap=$2; shift 2 ;;
     -icoFoam) ico=$2; shift 2 ;;
+    -U) U0=$2; shift 2 ;;
+    -umppm) extra=$2; shift 2 ;;
     -*) echo "unknown option $1" >&2; exit 1 ;;
     *) break ;;
     esac
@@ -37,7 +42,8 @@ if [ -n "$cfl" ]; then steprule="fixed deltaT = $cfl l_avg / U"
 elif [ -n "$deltaT" ]; then steprule="fixed deltaT = $deltaT"
 else steprule="adjustTimeStep maxCo = $maxCo"; fi
 printf "# Taylor-Green Re=100 %s %s, %s, endTime=%s\n" "$variant" "$lap" "$steprule" "$endTime"
-printf "%6s %7s %6s %8s %8s %7s %9s %9s %9s %9s\n" N_m particles steps seconds us/p-step RSS_MiB L2rel decay Eq41 Eq42
+printf "# U = %s, UMPPM { %s }\n" "$U0" "$extra"
+printf "%6s %7s %6s %8s %8s %7s %9s %9s %9s %9s %9s\n" N_m particles steps seconds us/p-step RSS_MiB L2rel decay Eq41 Eq42 amp
 prev=""
 for n in "$@"; do
     c=$work/tg$n-$variant
@@ -67,20 +73,20 @@ FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }
 solvers { p { solver PCG; preconditioner DIC; tolerance 1e-10; relTol 0; } pFinal { \$p; }
           U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-10; relTol 0; } }
 PISO { nCorrectors 2; nNonOrthogonalCorrectors 1; pRefCell 0; pRefValue 0; }
-UMPPM { variant $variant; laplacian $lap; }
+UMPPM { variant $variant; laplacian $lap; $extra }
 FS
     echo 'FoamFile { version 2.0; format ascii; class dictionary; object transportProperties; } nu 0.01;' \
         > "$c/constant/transportProperties"
     "$bin/makeCrossedTriangleMesh" -case "$c" -n "$n" >/dev/null
-    "$bin/setTaylorGreen" -case "$c" >/dev/null
+    "$bin/setTaylorGreen" -case "$c" -U "$U0" >/dev/null
     read -r sec rss rc < <(cd "$c" && python3 "$top/bench/run_measured.py" sh -c "$bin/umppmFoam > log 2>&1")
     [ "$rc" = 0 ] || { echo "umppmFoam failed in $c (see $c/log)" >&2; exit 1; }
     last=$(ls -d "$c"/[0-9]* | sed 's|.*/||' | sort -g | tail -1)
     steps=$(grep -c '^Time = ' "$c/log")
     np=$(grep -o 'Particles: [0-9]*' "$c/log" | awk '{ s += $2; k++ } END { print int(s / k) }')
-    read -r _ l2 _ dec _ e41 _ e42 < <(python3 "$top/tools/taylorGreenError.py" "$c" "$last")
+    read -r _ l2 _ dec _ e41 _ e42 _ amp < <(python3 "$top/tools/taylorGreenError.py" "$c" "$last")
     us=$(awk -v s="$sec" -v p="$np" -v k="$steps" 'BEGIN { printf "%.2f", 1e6 * s / (p * k) }')
-    printf "%6d %7d %6d %8.2f %8s %7.0f %9.4g %9.4g %9.4g %9.4g\n" $((4 * n * n)) "$np" "$steps" "$sec" "$us" "$rss" "$l2" "$dec" "$e41" "$e42"
+    printf "%6d %7d %6d %8.2f %8s %7.0f %9.4g %9.4g %9.4g %9.4g %+9.4f\n" $((4 * n * n)) "$np" "$steps" "$sec" "$us" "$rss" "$l2" "$dec" "$e41" "$e42" "$amp"
     if [ -n "$prev" ]; then
         set -- $prev
         awk -v n0="$1" -v n1="$n" -v a0="$2" -v a1="$l2" -v b0="$3" -v b1="$e42" -v c0="$4" -v c1="$dec" 'BEGIN {
@@ -100,7 +106,7 @@ CD
         read -r isec irss irc < <(python3 "$top/bench/run_measured.py" -o "$ic/log" icoFoam -case "$ic")
         [ "$irc" = 0 ] || { echo "icoFoam failed in $ic (see $ic/log)" >&2; exit 1; }
         ilast=$(ls -d "$ic"/[0-9]* | sed 's|.*/||' | sort -g | tail -1)
-        read -r _ il2 _ idec _ ie41 _ ie42 < <(python3 "$top/tools/taylorGreenError.py" "$ic" "$ilast")
+        read -r _ il2 _ idec _ ie41 _ ie42 _ < <(python3 "$top/tools/taylorGreenError.py" "$ic" "$ilast")
         isteps=$(grep -c '^Time = ' "$ic/log")
         printf "%6s %7s %6d %8.2f %8s %7.0f %9.4g %9.4g %9.4g %9.4g  icoFoam (umppmFoam/icoFoam time %.1f)\n" "" "" "$isteps" "$isec" "" "$irss" "$il2" "$idec" "$ie41" "$ie42" \
             "$(awk -v a="$sec" -v b="$isec" 'BEGIN { print a / b }')"

@@ -454,6 +454,7 @@ static const int refill_values[] = {-1, 0, 1};
 #define UM_GT(x) {1, 0, 1, 0, (x), 0, 0}
 #define UM_GE(x) {1, 0, 0, 0, (x), 0, 0}
 #define UM_1TO16 {1, 1, 0, 0, 1, 16, 0}
+#define UM_0TOHALF {1, 1, 0, 0, 0, 0.5, 0}
 
 static const case_option umppm_options[] = {
     {"variant", CASE_OPT_CHOICE, "UMPPMstar", 1, variant_words, variant_values, UM_NORANGE,
@@ -490,6 +491,9 @@ static const case_option umppm_options[] = {
     {"mlsSupport", CASE_OPT_SCALAR, "2", 2, NULL, NULL, UM_ZERO_OR_1TO4,
      "MLS weight support in cell extents; 0: Eq. 35's scales (farthest sample)",
      UM_FIELD(mls_support)},
+    {"pressureTheta", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_0TOHALF,
+     "previous pressure gradient share applied at r^n; 0.5: trapezoidal",
+     UM_FIELD(p_theta)},
     {"buoyancy", CASE_OPT_CHOICE, "balanced", 1, buoyancy_words, buoyancy_values, UM_NORANGE,
      "buoyant: force in the predictor less its balancing pressure",
      UM_FIELD(buoyancy_balanced)},

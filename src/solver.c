@@ -178,6 +178,9 @@ typedef struct sol_state {
     part_boundary bp;
     /* mesh fields */
     double *p, *uc, *vc, *usc, *vsc, *flux, *gflux, *gx, *gy, *div;
+    double *pold;              /* [ncells] pressureTheta > 0: the previous step's
+                                  pressure p^{n-1/2} (balanced buoyancy: pi_d),
+                                  then the increment phi of this step */
     double *pf;                /* [nfaces] face pressure of fixed faces (pi) */
     double *pib, *fluxb, *pf0; /* buoyant (balanced): pi_b [ncells], its face fluxes
                                   dt b_f . A_f [nfaces], zero face values [nfaces] */
@@ -230,6 +233,7 @@ void sol_default_settings(sol_settings *s)
     s->refill = SOL_REFILL_CARRIED;
     s->refill_k = 5;
     s->mls_support = 2;
+    s->p_theta = 0;
     s->t_start = 0;
 }
 
@@ -984,7 +988,7 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     ump_status rc;
     if (!(S->work = ump_alloc_array((size_t)S->nthreads, sizeof *S->work)))
         goto nomem;
-    double **cellarr[] = {&st->p, &st->uc, &st->vc, &st->usc, &st->vsc, &st->gx, &st->gy, &st->div,
+    double **cellarr[] = {&st->p, &st->pold, &st->uc, &st->vc, &st->usc, &st->vsc, &st->gx, &st->gy, &st->div,
                           &st->fu, &st->fv, &st->fT};
     for (size_t i = 0; i < sizeof cellarr / sizeof cellarr[0]; i++)
         if (!(*cellarr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
@@ -1475,6 +1479,36 @@ static void move_particles(sol *S, double *u, double *v, double dt, size_t *wall
 }
 
 /* Step 7: r* = r^n + dt u* (Eq. 9), re-located and re-binned. */
+/* pressureTheta th > 0 (a departure from Eq. 10, docs/METHOD.md section 8
+ * "Pressure along the path"): u* -= th dt grad p^{n-1/2} at r^n, the
+ * previous step's pressure (balanced buoyancy: its pi_d part) by the MLS
+ * derivative of Eqs. 33-34 (the gradient of Step 10). Step 9 then solves for
+ * p^{n+1/2} and Step 10 applies the rest, (1 - th) of it, at r*: with th =
+ * 1/2 the pressure impulse along the path is the trapezoidal rule
+ * dt/2 (grad p(r^n) + grad p(r*)) instead of dt grad p(r*), whose velocity
+ * loses the factor cos(dtheta) each step the path turns by dtheta. The
+ * previous step's p^{n-1/2} (not an extrapolation) is applied, so the
+ * pressure a step writes does not feed back into itself. */
+static void path_pressure_kick(sol *S, double dt, sol_stats *stats)
+{
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    part_set *P = st->P;
+    ump_idx nc = su->m->ncells;
+    size_t n = P->n;
+    double th = su->set.p_theta;
+    int bal = su->set.buoyant && su->set.balanced;
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+    for (ump_idx c = 0; c < nc; c++)
+        st->pold[c] = bal ? st->p[c] - st->pib[c] : st->p[c];
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pold, st->gpx, st->gpy);
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+    for (size_t i = 0; i < n; i++) {
+        st->us[i] -= th * dt * st->gpx[i];
+        st->vs[i] -= th * dt * st->gpy[i];
+    }
+}
+
 static ump_status step7_intermediate(sol *S, double dt, size_t *walled, ump_err *err)
 {
     sol_state *st = &S->st;
@@ -1678,6 +1712,18 @@ static ump_status step9_pressure(sol *S, double dt, ump_err *err)
     const sol_setup *su = &S->su;
     sol_state *st = &S->st;
     const mesh2d *m = su->m;
+    double th = su->set.p_theta;
+    if (th > 0) {
+        /* pressureTheta: the predicted particles carry -th dt grad p^{n-1/2}
+         * (path_pressure_kick); adding th dt G p^{n-1/2} to the fluxes makes
+         * the solve return p^{n+1/2} itself, with its own boundary values
+         * and reference, while the correction applies only the increment
+         * phi = p^{n+1/2} - th p^{n-1/2} */
+        ppe_face_gradient_flux(su->pe, st->pold, st->pf, st->gflux);
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+        for (ump_idx f = 0; f < m->nfaces; f++)
+            st->flux[f] += th * dt * st->gflux[f];
+    }
     /* Eqs. 20, 22-25, one solve with the factorization made at start-up */
     UMP_CALL(ppe_solve(su->pe, st->flux, dt, st->pf, st->p, err));
     ppe_face_gradient_flux(su->pe, st->p, st->pf, st->gflux);
@@ -1700,8 +1746,18 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
     /* u^{n+1} = u* - dt grad p (Eq. 10), grad p at r* by the MLS
      * derivative (Eqs. 33-34) of the centroid pressures of the particle's
      * cell and its N2 stencil (balanced buoyancy: p = pi_d, the part the
-     * predictor has not applied yet); gpx/gpy are free after the predictor */
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->p, st->gpx, st->gpy);
+     * predictor has not applied yet); gpx/gpy are free after the predictor.
+     * pressureTheta th > 0: the increment phi = p - th p^{n-1/2}, the part
+     * path_pressure_kick has not applied */
+    double th = su->set.p_theta;
+    const double *phi = st->p;
+    if (th > 0) {
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+        for (ump_idx c = 0; c < nc; c++)
+            st->pold[c] = st->p[c] - th * st->pold[c];
+        phi = st->pold;
+    }
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, phi, st->gpx, st->gpy);
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (size_t i = 0; i < n; i++) {
         P->u[i] = st->us[i] - dt * st->gpx[i];
@@ -1710,7 +1766,7 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
     /* r^{n+1} = r^n + dt u^{n+1} (Eq. 7) */
     move_particles(S, P->u, P->v, dt, &stats->walled);
     /* mesh velocity, Eq. 36, with the LS gradient of Eq. 26 */
-    lsq_gradient(su->g, st->p, st->gx, st->gy);
+    lsq_gradient(su->g, phi, st->gx, st->gy);
     int bal = su->set.buoyant && su->set.balanced;
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx c = 0; c < nc; c++) {
@@ -1980,6 +2036,8 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     stage_mark(&clk, stats, SOL_STAGE_ROWS);
     UMP_CALL(step6_solve(S, dt, stats, err));
     stage_mark(&clk, stats, SOL_STAGE_SOLVE);
+    if (su->set.p_theta > 0)
+        path_pressure_kick(S, dt, stats);
     UMP_CALL(step7_intermediate(S, dt, &stats->walled, err));
     stage_mark(&clk, stats, SOL_STAGE_MOVE);
     step8_mls_velocity(S);

@@ -9,6 +9,8 @@
 #            maximum speed against the maximum the mesh samples at t = 0
 #   Linf41   Eq. 41 as printed: |max|U| - e^{bt}| / e^{bt}
 #   L2_42    Eq. 42: sqrt(sum (u - u_theo)^2 / N_m), x-velocity
+#   amp      signed amplitude error: (sum U.U0 / sum U0.U0) / e^{bt} - 1, the
+#            fit of the field onto the initial one (> 0: decays too slowly)
 import math, re, sys
 case, tname = sys.argv[1], sys.argv[2]
 nu = float(sys.argv[3]) if len(sys.argv) > 3 else 0.01
@@ -27,5 +29,6 @@ den = sum((g * a[0]) ** 2 + (g * a[1]) ** 2 for a in U0)
 m0 = max(math.hypot(a[0], a[1]) for a in U0)
 m1 = max(math.hypot(u[0], u[1]) for u in U)
 l2x = math.sqrt(sum((u[0] - g * a[0]) ** 2 for u, a in zip(U, U0)) / len(U))
+amp = sum(u[0] * a[0] + u[1] * a[1] for u, a in zip(U, U0)) / sum(a[0] ** 2 + a[1] ** 2 for a in U0)
 print(f"L2rel {math.sqrt(num/den):.6g} Linf_decay {abs(m1/m0 - g)/g:.6g} "
-      f"Linf41 {abs(m1 - g)/g:.6g} L2_42 {l2x:.6g}")
+      f"Linf41 {abs(m1 - g)/g:.6g} L2_42 {l2x:.6g} amp {amp / g - 1:+.6g}")

@@ -74,6 +74,10 @@ typedef struct sol_settings {
                                 cell extents, continuous in the particle positions
                                 (default 2; docs/METHOD.md section 8); 0: Eq. 35's
                                 scales (farthest sample + cell extent) */
+    double p_theta;          /* pressureTheta, 0..1/2: the share of the previous
+                                step's pressure gradient applied at r^n, the rest
+                                at r* (default 0: all at r*, [NSH16] Eq. 10; 1/2:
+                                the trapezoidal rule along the path) */
     int balanced;            /* buoyant: the predictor carries b - grad pi_b, pi_b the
                                 pressure that balances the buoyancy b (solver.c
                                 balance_buoyancy); 0: b alone, as [NSH16] Eq. 14 */
