@@ -150,14 +150,19 @@ static ump_status cpm_coeffs(int dim, const double *const *off, int n, double *a
  * p = [h, k, h^2/2, hk, k^2/2] (hat units) is assembled from the 12
  * weighted moments S_ab = sum_j w_j^2 h^a k^b, 2 <= a + b <= 4, and only
  * the one combined column q = M^{-1} (e_hh + e_kk) is applied (Eq. 16:
- * lap = phi_xx + phi_yy). Same numbers as the generic loop up to rounding. */
-static inline __attribute__((always_inline)) ump_status cpm_coeffs2(const double *restrict h, const double *restrict k, int n, double *restrict a,
-                              ump_err *err)
+ * lap = phi_xx + phi_yy). Same numbers as the generic loop up to rounding.
+ * Metric (sx, sy): the fit is made in the coordinates (sx h, sy k), so the
+ * weights w_j = 1/r_j^3 measure distance in that metric, and the Laplacian
+ * is sx^2 phi_XX + sy^2 phi_YY there (q = M^{-1} (sx^2 e_hh + sy^2 e_kk));
+ * with sx = sy = 1 it is the plain fit. Still exact for quadratics. */
+static inline __attribute__((always_inline)) ump_status cpm_coeffs2(const double *restrict h, const double *restrict k, int n,
+                                                                    double sx, double sy, double *restrict a,
+                                                                    ump_err *err)
 {
     double r2max = 0, r2min = INFINITY;
 #pragma omp simd reduction(max : r2max) reduction(min : r2min)
     for (int j = 0; j < n; j++) {
-        double r2 = h[j] * h[j] + k[j] * k[j];
+        double hs = sx * h[j], ks = sy * k[j], r2 = hs * hs + ks * ks;
         r2max = r2 > r2max ? r2 : r2max;
         r2min = r2 < r2min ? r2 : r2min;
     }
@@ -165,7 +170,8 @@ static inline __attribute__((always_inline)) ump_status cpm_coeffs2(const double
         return UMP_FAIL(err, UMP_ERR_SINGULAR,
                         "CPM Laplacian: %d neighbours, none at a finite non-zero distance", n);
     double iL = 1 / sqrt(r2max), rmin2 = CPM_COINCIDENT * CPM_COINCIDENT;
-    if (r2min * (iL * iL) < rmin2) { /* a coincident neighbour: the general loop handles it */
+    if (r2min * (iL * iL) < rmin2) { /* a coincident neighbour: the general loop handles it
+                                        (isotropic weights: exact for quadratics too) */
         const double *off[2] = {h, k};
         return cpm_coeffs(2, off, n, a, err);
     }
@@ -179,7 +185,7 @@ static inline __attribute__((always_inline)) ump_status cpm_coeffs2(const double
      * went to the general loop above */
 #pragma omp simd reduction(+ : s20, s11, s02, s30, s21, s12, s03, s40, s31, s22, s13, s04)
     for (int j = 0; j < n; j++) {
-        double X = h[j] * iL, Y = k[j] * iL, r2 = X * X + Y * Y;
+        double X = sx * h[j] * iL, Y = sy * k[j] * iL, r2 = X * X + Y * Y;
         double w2 = 1 / (r2 * r2 * r2); /* w_j^2 = 1/r^6 */
         double wx = w2 * X, wy = w2 * Y;
         double wxx = wx * X, wxy = wx * Y, wyy = wy * Y;
@@ -219,16 +225,16 @@ static inline __attribute__((always_inline)) ump_status cpm_coeffs2(const double
         return UMP_FAIL(err, UMP_ERR_SINGULAR,
                         "CPM Laplacian: moment matrix singular (rcond %.3g, %d neighbours "
                         "not spread in 2-D)", rc, nused);
-    /* q = M^{-1} (e_2 + e_4): the rows of phi_xx and phi_yy, Eq. 16 */
+    /* q = M^{-1} (sx^2 e_2 + sy^2 e_4): the rows of phi_xx and phi_yy, Eq. 16 */
     double q[5], c2[5], c4[5];
     spd_inv_column(&f, 2, c2);
     spd_inv_column(&f, 4, c4);
     for (int r = 0; r < 5; r++)
-        q[r] = c2[r] + c4[r];
+        q[r] = sx * sx * c2[r] + sy * sy * c4[r];
     double il2 = 1 / r2max; /* a_j = a_hat_j / L^2 */
 #pragma omp simd
     for (int j = 0; j < n; j++) {
-        double X = h[j] * iL, Y = k[j] * iL;
+        double X = sx * h[j] * iL, Y = sy * k[j] * iL;
         double s = q[0] * X + q[1] * Y + q[2] * 0.5 * X * X + q[3] * X * Y + q[4] * 0.5 * Y * Y;
         a[j] *= s * il2;
     }
@@ -314,7 +320,7 @@ ump_status lap_coeffs_d(const lap_params *p, int dim, const double *const *off, 
         UMP_CHECK(off && off[d] && a, err, UMP_ERR_INPUT, "Laplacian: offsets or coefficients missing");
     switch (p->model) {
     case LAP_CPM:
-        return dim == 2 ? cpm_coeffs2(off[0], off[1], n, a, err) : cpm_coeffs(dim, off, n, a, err);
+        return dim == 2 ? cpm_coeffs2(off[0], off[1], n, 1.0, 1.0, a, err) : cpm_coeffs(dim, off, n, a, err);
     case LAP_MPS:
     case LAP_PS:
     case LAP_IPS:
@@ -328,6 +334,19 @@ ump_status lap_coeffs(const lap_params *p, const double *h, const double *k, int
 {
     const double *off[2] = {h, k};
     return lap_coeffs_d(p, 2, off, n, l0, a, err);
+}
+
+UMP_TARGET_CLONES
+ump_status lap_coeffs_metric(const lap_params *p, const double *h, const double *k, int n, double l0,
+                             double sx, double sy, double *a, ump_err *err)
+{
+    UMP_CHECK(sx > 0 && sy > 0 && isfinite(sx) && isfinite(sy), err, UMP_ERR_INPUT,
+              "Laplacian: metric (%g, %g), expected finite and > 0", sx, sy);
+    if (p && p->model == LAP_CPM && n > 0) {
+        UMP_CHECK(h && k && a, err, UMP_ERR_INPUT, "Laplacian: offsets or coefficients missing");
+        return cpm_coeffs2(h, k, n, sx, sy, a, err);
+    }
+    return lap_coeffs(p, h, k, n, l0, a, err);
 }
 
 double lap_value(const double *a, const double *phij, double phii, int n)

@@ -2,9 +2,15 @@
  * lsq.c -- least-squares cell gradient, Eq. (26) of Ng, Sheu & Hwang (2016)
  * [NSH16], Section 3.2.2.1, Fig. 3 (docs/METHOD.md section 3.2).
  *
- *   grad phi_P = M_P^-1 sum_j d_j (phi_j - phi_P),  M_P = sum_j d_j d_j^T,
+ *   grad phi_P = M_P^-1 sum_j w_j d_j (phi_j - phi_P),  M_P = sum_j w_j d_j d_j^T,
  *   d_j = (x_j + s_j) - x_P over the first neighbours j in N1(P),
- * s_j the cyclic shift of the stencil entry (zero without cyclics).
+ * s_j the cyclic shift of the stencil entry (zero without cyclics), with
+ * the weights w_j = 1/|d_j|^2 of OpenFOAM's leastSquares gradient (Eq. 26
+ * itself has w_j = 1; docs/METHOD.md section 8, "Anisotropic cells"): on
+ * a cell stretched 199:1 the unweighted fit turns the curvature of p along
+ * the long side into a gradient across the short one, of order
+ * h_long^2 / h_short (a pressure uniform along a row gave dp/dx = -564);
+ * weighted, that error is of order h_short.
  * M_P depends only on the mesh (Step 3 of the algorithm): lsq_build stores
  * g_j = M_P^-1 d_j per stencil entry once, and lsq_gradient is then one
  * pass over the stencil, allocation-free. The gradient is exact for fields
@@ -52,9 +58,18 @@ ump_status lsq_build(const mesh2d *m, lsq_grad **out, ump_err *err)
             ump_idx j = m->n1[k];
             double dx = (m->cx[j] + (m->n1_sx ? m->n1_sx[k] : 0.0) - m->cx[c]) / h;
             double dy = (m->cy[j] + (m->n1_sy ? m->n1_sy[k] : 0.0) - m->cy[c]) / h;
-            mxx += dx * dx;                 /* M_P = sum_j d_j d_j^T, Eq. 26 */
-            mxy += dx * dy;
-            myy += dy * dy;
+            double r2 = dx * dx + dy * dy;
+            if (!(r2 > 0)) {
+                lsq_free(&g);
+                return UMP_FAIL(err, UMP_ERR_INPUT,
+                                "%s: cells %d and %d have the same centroid (%g, %g): no least-squares "
+                                "gradient (Eq. 26)",
+                                m->pm && m->pm->dir ? m->pm->dir : "mesh", (int)c, (int)j, m->cx[c], m->cy[c]);
+            }
+            double w = 1 / r2; /* w_j = 1/|d_j|^2 */
+            mxx += w * dx * dx;                 /* M_P = sum_j w_j d_j d_j^T, Eq. 26 */
+            mxy += w * dx * dy;
+            myy += w * dy * dy;
         }
         double det = mxx * myy - mxy * mxy, tr = mxx + myy;
         if (!(tr > 0) || !(det > LSQ_DET_MIN * tr * tr)) {
@@ -71,9 +86,11 @@ ump_status lsq_build(const mesh2d *m, lsq_grad **out, ump_err *err)
             ump_idx j = m->n1[k];
             double dx = (m->cx[j] + (m->n1_sx ? m->n1_sx[k] : 0.0) - m->cx[c]) / h;
             double dy = (m->cy[j] + (m->n1_sy ? m->n1_sy[k] : 0.0) - m->cy[c]) / h;
-            /* g_k = M_P^-1 d_k, back in physical units: 1/h from d/h and M/h^2 */
-            g->wx[k] = (ixx * dx + ixy * dy) / h;
-            g->wy[k] = (ixy * dx + iyy * dy) / h;
+            /* g_k = w_k M_P^-1 d_k, back in physical units: 1/h from w d/h
+             * (w in units of 1/h^2, M dimensionless) */
+            double w = 1 / (dx * dx + dy * dy);
+            g->wx[k] = w * (ixx * dx + ixy * dy) / h;
+            g->wy[k] = w * (ixy * dx + iyy * dy) / h;
         }
     }
     *out = g;

@@ -326,7 +326,7 @@ void sol_free(sol **pS)
     free(su->timed);
     void *arr[] = {su->u_kind, st->ub, st->vb, su->p_dir, su->p_total, su->p0, st->prgh_f, su->t_kind, su->tb, su->ghc, su->ghf,
                    su->st_off, su->st_cell, su->st_sx, su->st_sy, su->ru_off, su->ru_q0, su->ru_q1,
-                   su->ru_sx, su->ru_sy, su->of_off, su->of_face, st->p, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
+                   su->ru_sx, su->ru_sy, su->of_off, su->of_face, st->p, st->pold, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
                    st->av, st->cnt_cell, st->pib, st->fluxb, st->pf0, st->gpx, st->gpy, st->empty,
@@ -1262,6 +1262,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
     const lap_params mps = {LAP_MPS, 3.1};
     const part_boundary *bp = &st->bp;
     int bal = buoyant && set->balanced;
+    int kick = bal || set->p_theta > 0; /* gpx, gpy: grad pi_b and/or th grad p^{n-1/2} */
 #pragma omp parallel num_threads(S->nthreads)
     {
         sol_work *w = &S->work[thread_id()];
@@ -1281,7 +1282,11 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
             gathered = c;
             int nn = offsets_but(w, cnt, (ump_idx)i, P->x[i], P->y[i]);
             double l0 = sqrt(m->area[c]);
-            if (lap_coeffs(&set->lap, w->h, w->k, nn, l0, w->c0, &e) != UMP_OK) {
+            /* CPM in the metric of the particle's cell: distances in units of
+             * its extents dx, dy (docs/METHOD.md section 8, "Anisotropic
+             * cells"); on a cell with dx = dy this is the plain CPM row */
+            if (lap_coeffs_metric(&set->lap, w->h, w->k, nn, l0, 1 / m->dx[c], 1 / m->dy[c], w->c0, &e) !=
+                UMP_OK) {
                 w->lap_fallbacks++;
                 if ((rc = lap_coeffs(&mps, w->h, w->k, nn, l0, w->c0, &e)) != UMP_OK) {
                     work_fail(w, rc, &e);
@@ -1323,7 +1328,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
             /* Boussinesq source per unit mass, -beta (T^n - TRef) g (Eq. 4) */
             double b = buoyant ? -set->beta * (P->T[i] - set->t_ref) : 0;
             /* balanced buoyancy: b - grad pi_b (balance_buoyancy) */
-            double px = bal ? st->gpx[i] : 0, py = bal ? st->gpy[i] : 0;
+            double px = kick ? st->gpx[i] : 0, py = kick ? st->gpy[i] : 0;
             st->rhs_u[i] = P->u[i] + dnu * bu + dt * (b * gx - px);
             st->rhs_v[i] = P->v[i] + dnu * bv + dt * (b * gy - py);
             st->rhs_T[i] = P->T[i] + dkap * bT; /* Eq. 37 */
@@ -1480,16 +1485,19 @@ static void move_particles(sol *S, double *u, double *v, double dt, size_t *wall
 
 /* Step 7: r* = r^n + dt u* (Eq. 9), re-located and re-binned. */
 /* pressureTheta th > 0 (a departure from Eq. 10, docs/METHOD.md section 8
- * "Pressure along the path"): u* -= th dt grad p^{n-1/2} at r^n, the
- * previous step's pressure (balanced buoyancy: its pi_d part) by the MLS
- * derivative of Eqs. 33-34 (the gradient of Step 10). Step 9 then solves for
+ * "Pressure along the path"): the predictor (Eq. 14) carries -th dt grad
+ * p^{n-1/2}(r^n) in its right-hand side, with gpx/gpy (added to grad pi_b
+ * under balanced buoyancy): the previous step's pressure (balanced
+ * buoyancy: its pi_d part) by the MLS derivative of Eqs. 33-34 (the
+ * gradient of Step 10). Implicit viscosity then balances it at walls, as
+ * in icoFoam's momentum predictor. Step 9 then solves for
  * p^{n+1/2} and Step 10 applies the rest, (1 - th) of it, at r*: with th =
  * 1/2 the pressure impulse along the path is the trapezoidal rule
  * dt/2 (grad p(r^n) + grad p(r*)) instead of dt grad p(r*), whose velocity
  * loses the factor cos(dtheta) each step the path turns by dtheta. The
  * previous step's p^{n-1/2} (not an extrapolation) is applied, so the
  * pressure a step writes does not feed back into itself. */
-static void path_pressure_kick(sol *S, double dt, sol_stats *stats)
+static void path_pressure_kick(sol *S, sol_stats *stats)
 {
     const sol_setup *su = &S->su;
     sol_state *st = &S->st;
@@ -1501,11 +1509,12 @@ static void path_pressure_kick(sol *S, double dt, sol_stats *stats)
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx c = 0; c < nc; c++)
         st->pold[c] = bal ? st->p[c] - st->pib[c] : st->p[c];
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pold, st->gpx, st->gpy);
+    /* us, vs are free until the predictor solve */
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pold, st->us, st->vs);
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (size_t i = 0; i < n; i++) {
-        st->us[i] -= th * dt * st->gpx[i];
-        st->vs[i] -= th * dt * st->gpy[i];
+        st->gpx[i] = (bal ? st->gpx[i] : 0.0) + th * st->us[i];
+        st->gpy[i] = (bal ? st->gpy[i] : 0.0) + th * st->vs[i];
     }
 }
 
@@ -2030,14 +2039,14 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     set_boundary_particles(su, st);
     if (su->set.buoyant && su->set.balanced)
         UMP_CALL(balance_buoyancy(S, dt, stats, err));
+    if (su->set.p_theta > 0)
+        path_pressure_kick(S, stats);
     stage_mark(&clk, stats, SOL_STAGE_BOUNDARY);
     UMP_CALL(step6_rows(S, dt, err));
     UMP_CALL(work_collect(S, stats, err));
     stage_mark(&clk, stats, SOL_STAGE_ROWS);
     UMP_CALL(step6_solve(S, dt, stats, err));
     stage_mark(&clk, stats, SOL_STAGE_SOLVE);
-    if (su->set.p_theta > 0)
-        path_pressure_kick(S, dt, stats);
     UMP_CALL(step7_intermediate(S, dt, &stats->walled, err));
     stage_mark(&clk, stats, SOL_STAGE_MOVE);
     step8_mls_velocity(S);

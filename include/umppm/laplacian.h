@@ -59,6 +59,15 @@ ump_status lap_coeffs_d(const lap_params *p, int dim, const double *const *off, 
 ump_status lap_coeffs(const lap_params *p, const double *h, const double *k, int n, double l0,
                       double *a, ump_err *err);
 
+/* The 2-D form with a metric for anisotropic stencils: CPM fits in the
+ * coordinates (sx h, sy k), so its weights 1/r^3 measure distance in units
+ * of the local cell extents when sx, sy are their inverses (any common
+ * factor cancels); the row is still the physical phi_xx + phi_yy, exact
+ * for quadratics. sx = sy gives lap_coeffs' CPM row (up to rounding). The
+ * kernel models ignore the metric. */
+ump_status lap_coeffs_metric(const lap_params *p, const double *h, const double *k, int n, double l0,
+                             double sx, double sy, double *a, ump_err *err);
+
 /* The explicit value: sum_j a_j (phi_j - phi_i) over a row a [n] from
  * lap_coeffs_d / lap_coeffs, neighbour values phij [n]. */
 double lap_value(const double *a, const double *phij, double phii, int n);

@@ -2,12 +2,13 @@
  * lsq.h -- least-squares cell gradient on the pressure mesh, Eq. (26) of
  * Ng, Sheu & Hwang (2016) [NSH16] (module prefix lsq_).
  *
- *   grad phi_P = M_P^{-1} sum_j (x_j - x_P)(phi_j - phi_P),
- *   M_P = sum_j (x_j - x_P)(x_j - x_P)^T,
+ *   grad phi_P = M_P^{-1} sum_j w_j (x_j - x_P)(phi_j - phi_P),
+ *   M_P = sum_j w_j (x_j - x_P)(x_j - x_P)^T,  w_j = 1/|x_j - x_P|^2
+ * (OpenFOAM's leastSquares weights; Eq. 26 has w_j = 1, see lsq.c),
  * over the first-neighbour stencil N1(P) of mesh2d (cells sharing a vertex,
  * Fig. 3), with cyclic shifts. M_P^{-1} depends only on the mesh (Step 3):
  * lsq_build stores, per stencil entry k of cell P, the weight vector
- * g_k = M_P^{-1} (x_j - x_P), so grad phi_P = sum_k g_k (phi_j - phi_P):
+ * g_k = w_k M_P^{-1} (x_j - x_P), so grad phi_P = sum_k g_k (phi_j - phi_P):
  * a linear operator the PPE assembly can expand (Eq. 25).
  */
 #ifndef UMPPM_LSQ_H

@@ -9,16 +9,18 @@
 #     inlets, zeroGradient U / fixedValue p outlet, t = 10): runs to the end,
 #     continuity < 1e-12, particles leave through the outlet and the count
 #     stays within 10% of the cell count; against icoFoam on a copy
-#     (postProcess patchAverage of p on each inlet at the written times 6,
-#     7, 8, 9, 10: the inlet pressures oscillate in time, inlet-6 from 1.5
-#     to 5.1, icoFoam 0.87-1.03, so one time is a sample, the mean less
-#     so): |mean inlet-5 p / icoFoam's| < 3 (measured 0.545 / 0.221 = 2.46;
-#     1.35 with Eq. 35's MLS scales, mlsSupport 0) and inlet-6 < 4.5
-#     (1.56 / 0.931 = 1.68; 3.35); U relative L2 at t = 10 < 0.30 (0.214;
-#     0.231). With the paper's refill (`refill centroid`) the ratios
-#     are 5.7 and 4.7 and U 0.354, and the check fails. The target of
-#     issue 14 (within 15 %) is not met (README, "Accuracy: studies and
-#     changes");
+#     (postProcess patchAverage of p on each inlet every 0.2 s from t = 5
+#     to 10, 26 samples: writeInterval 4 steps instead of the tutorial's
+#     20, nothing else changed): the inlet pressures oscillate in time
+#     (inlet-6 between about -4 and 6, icoFoam 0.87-1.03), so one time is a
+#     sample and the mean of the 5 written times 6..10 was itself noise
+#     (standard error about 1; it moved inlet-5 from 0.55 to -0.87 when the
+#     anisotropic CPM metric and LS weights came in, README "Anisotropic
+#     cells"). |mean inlet-5 p / icoFoam's| < 3 (measured -0.147 / 0.221,
+#     0.66) and inlet-6 < 4.5 (0.79 / 0.94, 0.84); U relative L2 at t = 10
+#     < 0.30 (0.213). With the paper's refill (`refill centroid`) the
+#     5-time ratios were 5.7 and 4.7 and U 0.354. The target of issue 14
+#     (within 15 %) is not met (README, "Accuracy: studies and changes");
 #   - cavityGrade (starts at 0.5, which its Allrun maps from cavity): refused
 #     with one error line naming the controlDict, as icoFoam refuses it.
 # Needs UMPPMFOAM and TOOLDIR (foamCompare).
@@ -53,6 +55,8 @@ fi
 e=$work/elbow
 cp -r "$ex/elbow" "$e"
 gzip -dc "$e/elbow.msh.gz" > "$e/elbow.msh"
+sed -i 's/^writeInterval .*/writeInterval 4;/' "$e/system/controlDict" # every 0.2 s
+grep -q '^writeInterval 4;' "$e/system/controlDict" || { echo "  FAIL elbow: could not set writeInterval"; fail=1; }
 run_in "$e" fluentMeshToFoam fluentMeshToFoam elbow.msh
 if "$UMPPMFOAM" -case "$e" > "$e/log.umppmFoam" 2>&1; then
     [ -f "$e/10/U" ] || { echo "  FAIL elbow: 10/U missing"; fail=1; }
@@ -67,14 +71,14 @@ if "$UMPPMFOAM" -case "$e" > "$e/log.umppmFoam" 2>&1; then
         for k in 5 6; do
             for d in "$e" "$e/ico"; do
                 run_in "$d" "patchAverage$k" postProcess -func "patchAverage(name=velocity-inlet-$k,p)" \
-                    -time '6:10' || fail=1
+                    -time '5:10' || fail=1
             done
-            # the mean over the written times 6, 7, 8, 9, 10
+            # the mean over the written times 5, 5.2, ..., 10
             mean() { sed -n 's/.*areaAverage(velocity-inlet-'$k') of p = //p' "$1" |
-                awk '{ s += $1; n++ } END { if (n == 5) print s / n; else print "nan" }'; }
+                awk '{ s += $1; n++ } END { if (n == 26) print s / n; else print "nan" }'; }
             pu=$(mean "$e/log.patchAverage$k")
             pi=$(mean "$e/ico/log.patchAverage$k")
-            echo "  elbow inlet-$k p, mean over t = 6..10: umppmFoam $pu, icoFoam $pi"
+            echo "  elbow inlet-$k p, mean over t = 5..10 (26 times): umppmFoam $pu, icoFoam $pi"
             bound=3
             [ $k = 6 ] && bound=4.5
             check_below "elbow: |mean inlet-$k p / icoFoam's|" \

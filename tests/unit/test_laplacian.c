@@ -97,6 +97,74 @@ static void test_cpm_quadratic_exact(void **state)
     print_message("CPM on 500 irregular 24-neighbour clouds: worst rel. error %.3g\n", worst);
 }
 
+/* CPM in a cell metric (lap_coeffs_metric): exact for quadratics on clouds
+ * stretched by 10^-3 .. 10^3 in x; with sx = sy the plain row; and on a
+ * cloud stretched 1000:1 (a lattice of x-spacing 10^-3, y-spacing 1, the
+ * stencil of a thin cell) it gives the Laplacian of a field varying on
+ * both spacings, f = g(x/ax, y), where the plain fit is refused as
+ * singular (the solver then falls back to MPS). */
+static double fsin(double x, double y);
+static void test_cpm_metric(void **state)
+{
+    (void)state;
+    tu_rng_seed(23);
+    double hh[NMAX], kk[NMAX], a[NMAX], b[NMAX], phi[NMAX];
+    double worst = 0, worst_eq = 0;
+    ump_err err;
+    for (int t = 0; t < 200; t++) {
+        double ax = pow(10, tu_rnd_in(-3, 3)), xi, yi;
+        int n = cloud24(1, 0.45, 0, 0, &xi, &yi, hh, kk);
+        /* the same metric in both directions: the plain CPM row */
+        assert_int_equal(lap_coeffs_metric(&CPM, hh, kk, n, 1, 3.7, 3.7, a, &err), UMP_OK);
+        assert_int_equal(lap_coeffs(&CPM, hh, kk, n, 1, b, &err), UMP_OK);
+        double amax = 0, d = 0;
+        for (int j = 0; j < n; j++) {
+            amax = fmax(amax, fabs(b[j]));
+            d = fmax(d, fabs(a[j] - b[j]));
+        }
+        worst_eq = fmax(worst_eq, d / amax);
+        for (int j = 0; j < n; j++)
+            hh[j] *= ax;
+        xi *= ax;
+        quad f;
+        for (int i = 0; i < 6; i++)
+            f.q[i] = tu_rnd_in(-1, 1) / (i == 1 || i == 3 ? ax : i == 4 ? ax * ax : 1);
+        assert_int_equal(lap_coeffs_metric(&CPM, hh, kk, n, 1, 1 / ax, 1, a, &err), UMP_OK);
+        for (int j = 0; j < n; j++)
+            phi[j] = qval(&f, xi + hh[j], yi + kk[j]);
+        double sc, lap = apply(a, phi, qval(&f, xi, yi), n, &sc);
+        double exact = 2 * f.q[4] + 2 * f.q[5];
+        double rel = fabs(lap - exact) / fmax(fabs(exact), sc);
+        worst = fmax(worst, rel);
+        if (!(rel <= 1e-9))
+            fail_msg("trial %d (ax %g): CPM metric %.17g, exact %.17g, rel %.3g", t, ax, lap, exact, rel);
+    }
+    if (!(worst_eq <= 1e-12))
+        fail_msg("sx = sy against plain CPM: %.3g", worst_eq);
+    /* thin-cell stencil: f = fsin(x / ax, y), lap f = -(1/ax^2 + 4) f */
+    double ax = 1e-3, ep = 0, em = 0;
+    for (int t = 0; t < 200; t++) {
+        double xi, yi, ox = tu_rnd(), oy = tu_rnd();
+        int n = cloud24(0.3, 0.3, ox, oy, &xi, &yi, hh, kk);
+        for (int j = 0; j < n; j++)
+            hh[j] *= ax;
+        xi *= ax;
+        double ex = -(1 / (ax * ax) + 4) * fsin(xi / ax, yi);
+        for (int j = 0; j < n; j++)
+            phi[j] = fsin((xi + hh[j]) / ax, yi + kk[j]);
+        assert_int_equal(lap_coeffs_metric(&CPM, hh, kk, n, 1, 1 / ax, 1, a, &err), UMP_OK);
+        em = fmax(em, fabs(apply(a, phi, fsin(xi / ax, yi), n, NULL) - ex) * ax * ax);
+        if (lap_coeffs(&CPM, hh, kk, n, 1, b, &err) == UMP_OK)
+            ep = fmax(ep, fabs(apply(b, phi, fsin(xi / ax, yi), n, NULL) - ex) * ax * ax);
+        else
+            ep = INFINITY;
+    }
+    print_message("CPM metric: quadratics worst rel. error %.3g (200 clouds stretched 1e-3..1e3), "
+                  "sx = sy against plain %.3g; 1000:1 stencil, sin field: max error / (1/ax^2) "
+                  "metric %.3g, plain %.3g\n", worst, worst_eq, em, ep);
+    assert_true(em < ep);
+}
+
 static double fsin(double x, double y) { return sin(x + 0.3) * sin(2 * y - 0.1); }
 static double lsin(double x, double y) { return -5 * fsin(x, y); }
 
@@ -688,6 +756,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cpm_quadratic_exact),
+        cmocka_unit_test(test_cpm_metric),
         cmocka_unit_test(test_cpm_order),
         cmocka_unit_test(test_cpm_singular),
         cmocka_unit_test(test_cpm_coincident_neighbour),

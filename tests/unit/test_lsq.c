@@ -139,11 +139,16 @@ static void grad_errors(tm_kind kind, int n, double amp, int cyclic, double *ema
     pmesh_free(&pm);
 }
 
-/* Observed orders on three refinements. Unweighted LS over a vertex
- * stencil is first order at worst (boundary cells: one-sided stencil; on
- * irregular stencils), second order where the stencil is point-symmetric
- * about the centroid (uniform quads); we print what we measure and assert
- * the orders that hold. */
+/* Observed orders on three refinements. LS over a vertex stencil is first
+ * order at worst (boundary cells: one-sided stencil; on irregular
+ * stencils), second order where the stencil is point-symmetric about the
+ * centroid (uniform quads); we print what we measure and assert the orders
+ * that hold, and the error levels on the finest mesh. With the weights
+ * 1/|d|^2 (lsq.c) the errors are 1.2-2.2 times lower than unweighted (Eq.
+ * 26 as printed: triangles rms 6.92e-2, interior max 1.04e-1 at n = 40;
+ * distorted hybrid 6.37e-2, 1.34e-1); the distorted hybrid mesh's interior
+ * maximum then falls by 0.89 orders on the last refinement (unweighted
+ * 1.03), so its bound is 0.85. */
 static void test_convergence(void **state)
 {
     (void)state;
@@ -151,14 +156,14 @@ static void test_convergence(void **state)
         tm_kind kind;
         double amp;
         int cyclic;
-        double min_rms, min_in;
+        double min_rms, min_in, max_rms, max_in; /* orders; errors at n = 40 */
     } cases[] = {
-        {TM_QUAD, 0.0, 0, 1.4, 1.9},
-        {TM_QUAD, 0.0, 1, 1.9, 1.9},
-        {TM_TRI, 0.0, 0, 0.9, 0.9},
-        {TM_TRI, 0.0, 1, 0.9, 0.9},
-        {TM_TRI, 0.05, 0, 0.9, 0.9},
-        {TM_HYBRID, 0.05, 0, 0.9, 0.9},
+        {TM_QUAD, 0.0, 0, 1.4, 1.9, 0.040, 0.0095},
+        {TM_QUAD, 0.0, 1, 1.9, 1.9, 0.050, 0.070},
+        {TM_TRI, 0.0, 0, 0.9, 0.9, 0.045, 0.055},
+        {TM_TRI, 0.0, 1, 0.9, 0.9, 0.115, 0.21},
+        {TM_TRI, 0.05, 0, 0.9, 0.9, 0.046, 0.066},
+        {TM_HYBRID, 0.05, 0, 0.9, 0.85, 0.046, 0.083},
     };
     for (size_t q = 0; q < sizeof cases / sizeof cases[0]; q++) {
         double emax[3], erms[3], ein[3];
@@ -173,6 +178,8 @@ static void test_convergence(void **state)
                log2(ein[0] / ein[1]), o_in, emax[2], log2(emax[1] / emax[2]));
         assert_true(o_rms >= cases[q].min_rms);
         assert_true(o_in >= cases[q].min_in);
+        assert_true(erms[2] <= cases[q].max_rms);
+        assert_true(ein[2] <= cases[q].max_in);
     }
 }
 
