@@ -5,6 +5,7 @@
  *
  * Data flow of a step (particles P, mesh M):
  *   P: u^n, r^n --(Eq. 14 implicit predictor, CPM Laplacian)--> u*   step6
+ *      (pressureTheta > 0: with -th dt grad p^{n-1/2}, path_pressure_kick)
  *   P: r* = r^n + dt u*                                  (Eq. 9)    step7
  *   M: u*_f, u*_P by MLS from P at r*                    (Eqs. 28-35, 32) step8
  *   M: PPE sum_f grad p_f . A_f = (1/dt) sum_f u*_f . A_f (Eqs. 20, 25) step9
@@ -1483,7 +1484,6 @@ static void move_particles(sol *S, double *u, double *v, double dt, size_t *wall
     *walled += nw;
 }
 
-/* Step 7: r* = r^n + dt u* (Eq. 9), re-located and re-binned. */
 /* pressureTheta th > 0 (a departure from Eq. 10, docs/METHOD.md section 8
  * "Pressure along the path"): the predictor (Eq. 14) carries -th dt grad
  * p^{n-1/2}(r^n) in its right-hand side, with gpx/gpy (added to grad pi_b
@@ -1518,6 +1518,7 @@ static void path_pressure_kick(sol *S, sol_stats *stats)
     }
 }
 
+/* Step 7: r* = r^n + dt u* (Eq. 9), re-located and re-binned. */
 static ump_status step7_intermediate(sol *S, double dt, size_t *walled, ump_err *err)
 {
     sol_state *st = &S->st;
