@@ -136,6 +136,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->refill_k = (int)a->um.refill_k;
     s->mls_support = a->um.mls_support;
     s->p_theta = a->um.p_theta;
+    s->anisotropic = a->um.anisotropic;
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
     s->p_ref_value = a->so.p_ref_value;
     if (a->bu.on) {

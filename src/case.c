@@ -494,6 +494,8 @@ static const case_option umppm_options[] = {
     {"pressureTheta", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_0TOHALF,
      "previous pressure gradient share applied at r^n; 0.5: trapezoidal",
      UM_FIELD(p_theta)},
+    {"anisotropicCells", CASE_OPT_BOOL, "no", 0, NULL, NULL, UM_NORANGE,
+     "stretched cells: LS weights 1/|d|^2, CPM in cell-extent units", UM_FIELD(anisotropic)},
     {"buoyancy", CASE_OPT_CHOICE, "balanced", 1, buoyancy_words, buoyancy_values, UM_NORANGE,
      "buoyant: force in the predictor less its balancing pressure",
      UM_FIELD(buoyancy_balanced)},

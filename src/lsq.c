@@ -4,10 +4,11 @@
  *
  *   grad phi_P = M_P^-1 sum_j w_j d_j (phi_j - phi_P),  M_P = sum_j w_j d_j d_j^T,
  *   d_j = (x_j + s_j) - x_P over the first neighbours j in N1(P),
- * s_j the cyclic shift of the stencil entry (zero without cyclics), with
- * the weights w_j = 1/|d_j|^2 of OpenFOAM's leastSquares gradient (Eq. 26
- * itself has w_j = 1; docs/METHOD.md section 8, "Anisotropic cells"): on
- * a cell stretched 199:1 the unweighted fit turns the curvature of p along
+ * s_j the cyclic shift of the stencil entry (zero without cyclics), and
+ * w_j = 1 (Eq. 26, lsq_build) or, with lsq_build_weighted, the weights
+ * w_j = 1/|d_j|^2 of OpenFOAM's leastSquares gradient (umppmFoam's
+ * anisotropicCells; docs/METHOD.md section 8, "Anisotropic cells"): on a
+ * cell stretched 199:1 the unweighted fit turns the curvature of p along
  * the long side into a gradient across the short one, of order
  * h_long^2 / h_short (a pressure uniform along a row gave dp/dx = -564);
  * weighted, that error is of order h_short.
@@ -40,6 +41,11 @@ void lsq_free(lsq_grad **pg)
 
 ump_status lsq_build(const mesh2d *m, lsq_grad **out, ump_err *err)
 {
+    return lsq_build_weighted(m, 0, out, err);
+}
+
+ump_status lsq_build_weighted(const mesh2d *m, int weighted, lsq_grad **out, ump_err *err)
+{
     *out = NULL;
     lsq_grad *g = ump_alloc_array(1, sizeof *g);
     UMP_CHECK(g, err, UMP_ERR_NOMEM, "lsq: out of memory");
@@ -66,7 +72,7 @@ ump_status lsq_build(const mesh2d *m, lsq_grad **out, ump_err *err)
                                 "gradient (Eq. 26)",
                                 m->pm && m->pm->dir ? m->pm->dir : "mesh", (int)c, (int)j, m->cx[c], m->cy[c]);
             }
-            double w = 1 / r2; /* w_j = 1/|d_j|^2 */
+            double w = weighted ? 1 / r2 : 1.0; /* w_j = 1/|d_j|^2 or 1 */
             mxx += w * dx * dx;                 /* M_P = sum_j w_j d_j d_j^T, Eq. 26 */
             mxy += w * dx * dy;
             myy += w * dy * dy;
@@ -88,7 +94,7 @@ ump_status lsq_build(const mesh2d *m, lsq_grad **out, ump_err *err)
             double dy = (m->cy[j] + (m->n1_sy ? m->n1_sy[k] : 0.0) - m->cy[c]) / h;
             /* g_k = w_k M_P^-1 d_k, back in physical units: 1/h from w d/h
              * (w in units of 1/h^2, M dimensionless) */
-            double w = 1 / (dx * dx + dy * dy);
+            double w = weighted ? 1 / (dx * dx + dy * dy) : 1.0;
             g->wx[k] = w * (ixx * dx + ixy * dy) / h;
             g->wy[k] = w * (ixy * dx + iyy * dy) / h;
         }

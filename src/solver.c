@@ -235,6 +235,7 @@ void sol_default_settings(sol_settings *s)
     s->refill_k = 5;
     s->mls_support = 2;
     s->p_theta = 0;
+    s->anisotropic = 0;
     s->t_start = 0;
 }
 
@@ -1054,7 +1055,7 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
                       (long)s->p_ref_cell, (long)nc - 1);
         goto fail;
     }
-    if ((rc = lsq_build(m, &su->g, err)) != UMP_OK)
+    if ((rc = lsq_build_weighted(m, s->anisotropic, &su->g, err)) != UMP_OK)
         goto fail;
     /* The PPE factorization (serial, the largest part of the set-up) beside
      * the particle stencils and the seeding, which do not need it; a
@@ -1283,11 +1284,11 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
             gathered = c;
             int nn = offsets_but(w, cnt, (ump_idx)i, P->x[i], P->y[i]);
             double l0 = sqrt(m->area[c]);
-            /* CPM in the metric of the particle's cell: distances in units of
-             * its extents dx, dy (docs/METHOD.md section 8, "Anisotropic
-             * cells"); on a cell with dx = dy this is the plain CPM row */
-            if (lap_coeffs_metric(&set->lap, w->h, w->k, nn, l0, 1 / m->dx[c], 1 / m->dy[c], w->c0, &e) !=
-                UMP_OK) {
+            /* anisotropicCells: CPM in the metric of the particle's cell,
+             * distances in units of its extents dx, dy (docs/METHOD.md
+             * section 8, "Anisotropic cells"); dx = dy is the plain row */
+            double sx = set->anisotropic ? 1 / m->dx[c] : 1, sy = set->anisotropic ? 1 / m->dy[c] : 1;
+            if (lap_coeffs_metric(&set->lap, w->h, w->k, nn, l0, sx, sy, w->c0, &e) != UMP_OK) {
                 w->lap_fallbacks++;
                 if ((rc = lap_coeffs(&mps, w->h, w->k, nn, l0, w->c0, &e)) != UMP_OK) {
                     work_fail(w, rc, &e);

@@ -3,8 +3,9 @@
  * Ng, Sheu & Hwang (2016) [NSH16] (module prefix lsq_).
  *
  *   grad phi_P = M_P^{-1} sum_j w_j (x_j - x_P)(phi_j - phi_P),
- *   M_P = sum_j w_j (x_j - x_P)(x_j - x_P)^T,  w_j = 1/|x_j - x_P|^2
- * (OpenFOAM's leastSquares weights; Eq. 26 has w_j = 1, see lsq.c),
+ *   M_P = sum_j w_j (x_j - x_P)(x_j - x_P)^T,
+ * w_j = 1 as Eq. 26, or 1/|x_j - x_P|^2 (OpenFOAM's leastSquares weights,
+ * for stretched cells; lsq.c),
  * over the first-neighbour stencil N1(P) of mesh2d (cells sharing a vertex,
  * Fig. 3), with cyclic shifts. M_P^{-1} depends only on the mesh (Step 3):
  * lsq_build stores, per stencil entry k of cell P, the weight vector
@@ -22,7 +23,9 @@ typedef struct lsq_grad {
 } lsq_grad;
 
 /* Fails (UMP_ERR_INPUT) if some M_P is singular (all neighbours collinear). */
-ump_status lsq_build(const mesh2d *m, lsq_grad **out, ump_err *err);
+ump_status lsq_build(const mesh2d *m, lsq_grad **out, ump_err *err); /* w_j = 1, Eq. 26 */
+/* weighted != 0: w_j = 1/|d_j|^2; 0: lsq_build. */
+ump_status lsq_build_weighted(const mesh2d *m, int weighted, lsq_grad **out, ump_err *err);
 void lsq_free(lsq_grad **g);
 /* gx, gy [ncells] = gradient of phi [ncells] (stride 1). */
 void lsq_gradient(const lsq_grad *g, const double *phi, double *gx, double *gy);

@@ -78,6 +78,9 @@ typedef struct sol_settings {
                                 step's pressure gradient applied at r^n, the rest
                                 at r* (default 0: all at r*, [NSH16] Eq. 10; 1/2:
                                 the trapezoidal rule along the path) */
+    int anisotropic;         /* anisotropicCells: LS gradient weights 1/|d|^2 and
+                                CPM in the metric of the cell extents (default 0:
+                                Eq. 26 and plain CPM) */
     int balanced;            /* buoyant: the predictor carries b - grad pi_b, pi_b the
                                 pressure that balances the buoyancy b (solver.c
                                 balance_buoyancy); 0: b alone, as [NSH16] Eq. 14 */

@@ -576,7 +576,7 @@ static void test_umppm_table(void **state)
     (void)state;
     size_t n;
     const case_option *t = case_umppm_options(&n);
-    assert_int_equal(n, 17);
+    assert_int_equal(n, 18);
     for (size_t i = 0; i < n; i++) {
         const case_option *o = &t[i];
         assert_non_null(o->key);

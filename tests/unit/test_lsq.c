@@ -7,14 +7,16 @@
 #include "testmesh.h"
 #include "umppm/lsq.h"
 
-static lsq_grad *build(const mesh2d *m)
+static lsq_grad *build_w(const mesh2d *m, int weighted)
 {
     lsq_grad *g = NULL;
     ump_err err;
-    if (lsq_build(m, &g, &err) != UMP_OK)
+    if (lsq_build_weighted(m, weighted, &g, &err) != UMP_OK)
         fail_msg("%s", err.msg);
     return g;
 }
+
+static lsq_grad *build(const mesh2d *m) { return build_w(m, 0); }
 
 static void test_linear_exact(void **state)
 {
@@ -102,12 +104,12 @@ static void test_cyclic(void **state)
 }
 
 /* max and rms gradient errors of phi = sin(pi x) cos(pi y) + x^2 y^3 */
-static void grad_errors(tm_kind kind, int n, double amp, int cyclic, double *emax, double *erms,
-                        double *emax_in)
+static void grad_errors(tm_kind kind, int n, double amp, int cyclic, int weighted, double *emax,
+                        double *erms, double *emax_in)
 {
     pmesh *pm = NULL;
     mesh2d *m = tm_mesh(kind, n, amp, cyclic, &pm);
-    lsq_grad *g = build(m);
+    lsq_grad *g = build_w(m, weighted);
     size_t nc = (size_t)m->ncells;
     double *phi = malloc(sizeof(double) * nc), *gx = malloc(sizeof(double) * nc),
            *gy = malloc(sizeof(double) * nc);
@@ -143,12 +145,14 @@ static void grad_errors(tm_kind kind, int n, double amp, int cyclic, double *ema
  * order at worst (boundary cells: one-sided stencil; on irregular
  * stencils), second order where the stencil is point-symmetric about the
  * centroid (uniform quads); we print what we measure and assert the orders
- * that hold, and the error levels on the finest mesh. With the weights
- * 1/|d|^2 (lsq.c) the errors are 1.2-2.2 times lower than unweighted (Eq.
- * 26 as printed: triangles rms 6.92e-2, interior max 1.04e-1 at n = 40;
- * distorted hybrid 6.37e-2, 1.34e-1); the distorted hybrid mesh's interior
- * maximum then falls by 0.89 orders on the last refinement (unweighted
- * 1.03), so its bound is 0.85. */
+ * that hold. Eq. 26 as printed (lsq_build), then with the weights 1/|d|^2
+ * (lsq_build_weighted, anisotropicCells), whose errors are 1.2-2.2 times
+ * lower (triangles rms 3.98e-2 against 6.92e-2, interior max 4.66e-2
+ * against 1.04e-1 at n = 40; distorted hybrid 4.09e-2 against 6.37e-2,
+ * 7.43e-2 against 1.34e-1): the weighted error levels on the finest mesh
+ * are asserted too, and the unweighted gradient fails them. The distorted
+ * hybrid mesh's weighted interior maximum falls by 0.89 orders on the last
+ * refinement (unweighted 1.03), so its bound is 0.85. */
 static void test_convergence(void **state)
 {
     (void)state;
@@ -156,24 +160,33 @@ static void test_convergence(void **state)
         tm_kind kind;
         double amp;
         int cyclic;
-        double min_rms, min_in, max_rms, max_in; /* orders; errors at n = 40 */
+        int weighted;
+        double min_rms, min_in, max_rms, max_in; /* orders; errors at n = 40 (weighted) */
     } cases[] = {
-        {TM_QUAD, 0.0, 0, 1.4, 1.9, 0.040, 0.0095},
-        {TM_QUAD, 0.0, 1, 1.9, 1.9, 0.050, 0.070},
-        {TM_TRI, 0.0, 0, 0.9, 0.9, 0.045, 0.055},
-        {TM_TRI, 0.0, 1, 0.9, 0.9, 0.115, 0.21},
-        {TM_TRI, 0.05, 0, 0.9, 0.9, 0.046, 0.066},
-        {TM_HYBRID, 0.05, 0, 0.9, 0.85, 0.046, 0.083},
+        {TM_QUAD, 0.0, 0, 0, 1.4, 1.9, 1, 1},
+        {TM_QUAD, 0.0, 1, 0, 1.9, 1.9, 1, 1},
+        {TM_TRI, 0.0, 0, 0, 0.9, 0.9, 1, 1},
+        {TM_TRI, 0.0, 1, 0, 0.9, 0.9, 1, 1},
+        {TM_TRI, 0.05, 0, 0, 0.9, 0.9, 1, 1},
+        {TM_HYBRID, 0.05, 0, 0, 0.9, 0.9, 1, 1},
+        {TM_QUAD, 0.0, 0, 1, 1.4, 1.9, 0.040, 0.0095},
+        {TM_QUAD, 0.0, 1, 1, 1.9, 1.9, 0.050, 0.070},
+        {TM_TRI, 0.0, 0, 1, 0.9, 0.9, 0.045, 0.055},
+        {TM_TRI, 0.0, 1, 1, 0.9, 0.9, 0.115, 0.21},
+        {TM_TRI, 0.05, 0, 1, 0.9, 0.9, 0.046, 0.066},
+        {TM_HYBRID, 0.05, 0, 1, 0.9, 0.85, 0.046, 0.083},
     };
     for (size_t q = 0; q < sizeof cases / sizeof cases[0]; q++) {
         double emax[3], erms[3], ein[3];
         int ns[3] = {10, 20, 40};
         for (int r = 0; r < 3; r++)
-            grad_errors(cases[q].kind, ns[r], cases[q].amp, cases[q].cyclic, &emax[r], &erms[r], &ein[r]);
+            grad_errors(cases[q].kind, ns[r], cases[q].amp, cases[q].cyclic, cases[q].weighted, &emax[r],
+                        &erms[r], &ein[r]);
         double o_rms = log2(erms[1] / erms[2]), o_in = log2(ein[1] / ein[2]);
-        printf("    LS gradient, %s%s: rms %.2e %.2e %.2e (order %.2f, %.2f), interior max %.2e %.2e "
+        printf("    LS gradient%s, %s%s: rms %.2e %.2e %.2e (order %.2f, %.2f), interior max %.2e %.2e "
                "%.2e (order %.2f, %.2f), max %.2e (order %.2f)\n",
-               tm_name(cases[q].kind, cases[q].amp), cases[q].cyclic ? ", periodic" : "", erms[0],
+               cases[q].weighted ? " (1/|d|^2)" : "", tm_name(cases[q].kind, cases[q].amp),
+               cases[q].cyclic ? ", periodic" : "", erms[0],
                erms[1], erms[2], log2(erms[0] / erms[1]), o_rms, ein[0], ein[1], ein[2],
                log2(ein[0] / ein[1]), o_in, emax[2], log2(emax[1] / emax[2]));
         assert_true(o_rms >= cases[q].min_rms);
