@@ -34,11 +34,9 @@ ex=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam/cavity/cavit
 work=$(mktemp -d "${TMPDIR:-/tmp}/umppm-graded.XXXXXX")
 fail=0
 
-# max |U| of the internal field of FILE (ascii vectors)
+# max |U| of the internal field of FILE (lib.sh field_values)
 max_speed() {
-    awk '/^internalField/ { on = 1; next } on && /^\)/ { exit }
-         on && /^\(/ { gsub(/[()]/, ""); s = sqrt($1 * $1 + $2 * $2); if (s > m) m = s }
-         END { printf "%.6g\n", m }' "$1"
+    field_values "$1" | awk '{ s = sqrt($1 * $1 + $2 * $2); if (s > m) m = s } END { printf "%.6g\n", m }'
 }
 
 # graded_case DIR GRADING: the tutorial cavity on 8x8 cells graded in x

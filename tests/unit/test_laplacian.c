@@ -65,6 +65,20 @@ static double qval(const quad *f, double x, double y)
     return q[0] + q[1] * x + q[2] * y + q[3] * x * y + q[4] * x * x + q[5] * y * y;
 }
 
+/* Relative error of the row a [n] on the quadratic f about (xi, yi), the
+ * neighbours at offsets hh, kk (phi [n] is scratch): |lap - exact| over the
+ * larger of |exact| and the rounding scale of the sum. */
+static double quad_rel_error(const double *a, int n, const quad *f, double xi, double yi,
+                             const double *hh, const double *kk, double *phi, double *lap, double *exact)
+{
+    for (int j = 0; j < n; j++)
+        phi[j] = qval(f, xi + hh[j], yi + kk[j]);
+    double sc;
+    *lap = apply(a, phi, qval(f, xi, yi), n, &sc);
+    *exact = 2 * f->q[4] + 2 * f->q[5];
+    return fabs(*lap - *exact) / fmax(fabs(*exact), sc);
+}
+
 static const lap_params CPM = {LAP_CPM, 0};
 static const lap_params MPS = {LAP_MPS, 2.1};
 
@@ -85,11 +99,7 @@ static void test_cpm_quadratic_exact(void **state)
             f.q[i] = tu_rnd_in(-1, 1) / (i == 0 ? 1 : i < 3 ? h : h * h);
         ump_err err;
         assert_int_equal(lap_coeffs(&CPM, hh, kk, n, h, a, &err), UMP_OK);
-        for (int j = 0; j < n; j++)
-            phi[j] = qval(&f, xi + hh[j], yi + kk[j]);
-        double sc, lap = apply(a, phi, qval(&f, xi, yi), n, &sc);
-        double exact = 2 * f.q[4] + 2 * f.q[5];
-        double rel = fabs(lap - exact) / fmax(fabs(exact), sc);
+        double lap, exact, rel = quad_rel_error(a, n, &f, xi, yi, hh, kk, phi, &lap, &exact);
         worst = fmax(worst, rel);
         if (!(rel <= 1e-10))
             fail_msg("trial %d: CPM %.17g, exact %.17g, rel %.3g", t, lap, exact, rel);
@@ -130,11 +140,7 @@ static void test_cpm_metric(void **state)
         for (int i = 0; i < 6; i++)
             f.q[i] = tu_rnd_in(-1, 1) / (i == 1 || i == 3 ? ax : i == 4 ? ax * ax : 1);
         assert_int_equal(lap_coeffs_metric(&CPM, hh, kk, n, 1, 1 / ax, 1, a, &err), UMP_OK);
-        for (int j = 0; j < n; j++)
-            phi[j] = qval(&f, xi + hh[j], yi + kk[j]);
-        double sc, lap = apply(a, phi, qval(&f, xi, yi), n, &sc);
-        double exact = 2 * f.q[4] + 2 * f.q[5];
-        double rel = fabs(lap - exact) / fmax(fabs(exact), sc);
+        double lap, exact, rel = quad_rel_error(a, n, &f, xi, yi, hh, kk, phi, &lap, &exact);
         worst = fmax(worst, rel);
         if (!(rel <= 1e-9))
             fail_msg("trial %d (ax %g): CPM metric %.17g, exact %.17g, rel %.3g", t, ax, lap, exact, rel);
