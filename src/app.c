@@ -1165,7 +1165,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
                a.fo.ignored);
     printf("UMPPM: variant %s, alpha %g, laplacian %s", a.um.variant_star ? "UMPPM*" : "UMPPM",
            a.um.alpha, a.um.laplacian);
-    if (strcmp(a.um.laplacian, "CPM") != 0)
+    if (strcmp(a.um.laplacian, "CPM") != 0 && strcmp(a.um.laplacian, "CPM4") != 0)
         printf(" (r_e = %g x spacing)", lap_re_factor(&(lap_params){(lap_model)lap_parse(a.um.laplacian),
                                                                    a.um.re_factor}));
     if (a.bu.on)

@@ -438,7 +438,7 @@ ump_status case_start_dir(const char *case_dir, const case_control *c, char *nam
 
 static const char *const variant_words[] = {"UMPPM", "UMPPMstar", "UMPPM*", NULL};
 static const int variant_values[] = {0, 1, 1};
-static const char *const laplacian_words[] = {"CPM", "MPS", "IPS", "PS", NULL};
+static const char *const laplacian_words[] = {"CPM", "MPS", "IPS", "PS", "CPM4", NULL};
 static const char *const ppe_words[] = {"auto", "UMFPACK", "KLU", "CHOLMOD", NULL};
 static const char *const pc_words[] = {"ILU0", "Jacobi", "none", NULL};
 static const char *const buoyancy_words[] = {"source", "balanced", NULL};

@@ -241,6 +241,146 @@ static inline __attribute__((always_inline)) ump_status cpm_coeffs2(const double
     return UMP_OK;
 }
 
+/* CPM4: the CPM fit of Eqs. 16-17 over the fourth-order Taylor basis in
+ * 2-D (14 terms: the 5 of CPM, then h^3/6, h^2k/2, hk^2/2, k^3/6, h^4/24,
+ * h^3k/6, h^2k^2/4, hk^3/6, k^4/24), same weights w_j^2 = 1/r^6 and the
+ * same metric (sx, sy). The quadratic fit of CPM leaves the quartic terms
+ * of phi in its second derivatives: an error (r k)^2 / 12 relative for a
+ * Fourier mode of wavenumber k over a stencil of radius r, which does not
+ * depend on the particles' order and is the Laplacian's whole O(h^2) error
+ * on a lattice. With the quartic terms in the basis the row is exact for
+ * quartics (docs/METHOD.md section 8, "CPM4"). Needs 14 distinct
+ * neighbours spread in 2-D; UMP_ERR_SINGULAR otherwise. */
+enum { CPM4_N = 14, CPM4_DEG = 8, CPM4_CHUNK = 32 };
+#define CPM4_PIVOT_MIN 1e-11
+/* the basis as c X^a Y^b: exponents and factors, in the order above */
+static const int cpm4_a[CPM4_N] = {1, 0, 2, 1, 0, 3, 2, 1, 0, 4, 3, 2, 1, 0};
+static const int cpm4_b[CPM4_N] = {0, 1, 0, 1, 2, 0, 1, 2, 3, 0, 1, 2, 3, 4};
+static const double cpm4_c[CPM4_N] = {1,       1,       0.5,     1,       0.5,
+                                      1.0 / 6, 0.5,     0.5,     1.0 / 6, 1.0 / 24,
+                                      1.0 / 6, 0.25,    1.0 / 6, 1.0 / 24};
+
+static inline __attribute__((always_inline)) ump_status cpm4_coeffs2(const double *restrict h, const double *restrict k, int n, double sx,
+                               double sy, double *restrict a, ump_err *err)
+{
+    double r2max = 0;
+    for (int j = 0; j < n; j++) {
+        double hs = sx * h[j], ks = sy * k[j];
+        r2max = fmax(r2max, hs * hs + ks * ks);
+    }
+    if (!(r2max > 0) || !(r2max < INFINITY))
+        return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                        "CPM4 Laplacian: %d neighbours, none at a finite non-zero distance", n);
+    double iL = 1 / sqrt(r2max), rmin2 = CPM_COINCIDENT * CPM_COINCIDENT;
+    /* weighted moments S_ab = sum_j w_j^2 X^a Y^b, 2 <= a + b <= 8 (hat
+     * units); M_rc = c_r c_c S_(a_r + a_c)(b_r + b_c), Eq. 17. In chunks of
+     * CPM4_CHUNK neighbours: the powers first, then each moment as one
+     * vectorised sum (a fixed order: the same bits for any thread count).
+     * A coincident neighbour gets weight 0. */
+    double S[CPM4_DEG + 1][CPM4_DEG + 1] = {{0}};
+    int nused = 0;
+    for (int j0 = 0; j0 < n; j0 += CPM4_CHUNK) {
+        int nb = n - j0 < CPM4_CHUNK ? n - j0 : CPM4_CHUNK, nu = 0;
+        double xp[CPM4_DEG + 1][CPM4_CHUNK], yp[CPM4_DEG + 1][CPM4_CHUNK];
+#pragma omp simd reduction(+ : nu)
+        for (int j = 0; j < nb; j++) {
+            double X = sx * h[j0 + j] * iL, Y = sy * k[j0 + j] * iL, r2 = X * X + Y * Y;
+            int far = r2 >= rmin2;
+            double r2s = far ? r2 : 1;
+            xp[0][j] = far ? 1 / (r2s * r2s * r2s) : 0; /* w_j^2 = 1/r^6, as CPM */
+            yp[0][j] = 1;
+            nu += far;
+            for (int e = 1; e <= CPM4_DEG; e++) {
+                xp[e][j] = xp[e - 1][j] * X;
+                yp[e][j] = yp[e - 1][j] * Y;
+            }
+        }
+        nused += nu;
+        for (int d = 2; d <= CPM4_DEG; d++)
+            for (int e = 0; e <= d; e++) {
+                double acc = 0;
+#pragma omp simd reduction(+ : acc)
+                for (int j = 0; j < nb; j++)
+                    acc += xp[e][j] * yp[d - e][j];
+                S[e][d - e] += acc;
+            }
+    }
+    if (nused < CPM4_N)
+        return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                        "CPM4 Laplacian: %d distinct neighbours, at least %d needed", nused, CPM4_N);
+    /* M equilibrated, A = D M D with D = diag(1/sqrt(M_rr)) (unit
+     * diagonal), into the lower triangle of l; Cholesky A = L L^T in place.
+     * Only the column q = M^{-1} (sx^2 e_hh + sy^2 e_kk) is needed, so no
+     * inverse: two triangular solves. Singularity is judged by the
+     * smallest pivot of A (a pivot is the squared distance of a basis
+     * column from the span of the ones before it, in the weighted norm; it
+     * is >= the smallest eigenvalue of A, so this under-estimates the
+     * condition number -- CPM4_PIVOT_MIN is set far above round-off). */
+    double dg[CPM4_N], l[CPM4_N][CPM4_N], pmin = 1;
+    for (int r = 0; r < CPM4_N; r++) {
+        double mrr = cpm4_c[r] * cpm4_c[r] * S[2 * cpm4_a[r]][2 * cpm4_b[r]];
+        if (!(mrr > 0) || !(mrr < INFINITY))
+            return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                            "CPM4 Laplacian: moment matrix singular (%d neighbours)", nused);
+        dg[r] = 1 / sqrt(mrr);
+    }
+    for (int c = 0; c < CPM4_N; c++)
+        for (int r = c; r < CPM4_N; r++) /* M_rc = c_r c_c S_(a_r + a_c)(b_r + b_c), Eq. 17 */
+            l[r][c] = dg[r] * dg[c] * cpm4_c[r] * cpm4_c[c] * S[cpm4_a[r] + cpm4_a[c]][cpm4_b[r] + cpm4_b[c]];
+    for (int c = 0; c < CPM4_N; c++) {
+        double piv = l[c][c];
+        for (int t = 0; t < c; t++)
+            piv -= l[c][t] * l[c][t];
+        if (!(piv > CPM4_PIVOT_MIN)) {
+            pmin = piv;
+            break;
+        }
+        pmin = fmin(pmin, piv);
+        double lc = sqrt(piv), il = 1 / lc;
+        l[c][c] = lc;
+        for (int r = c + 1; r < CPM4_N; r++) {
+            double v = l[r][c];
+            for (int t = 0; t < c; t++)
+                v -= l[r][t] * l[c][t];
+            l[r][c] = v * il;
+        }
+    }
+    if (!(pmin > CPM4_PIVOT_MIN))
+        return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                        "CPM4 Laplacian: moment matrix singular (pivot %.3g, %d neighbours)", pmin, nused);
+    /* q = D A^{-1} D (sx^2 e_hh + sy^2 e_kk), Eq. 16's rows of phi_xx, phi_yy */
+    double q[CPM4_N] = {0};
+    q[2] = sx * sx * dg[2], q[4] = sy * sy * dg[4];
+    for (int r = 0; r < CPM4_N; r++) { /* L y = b */
+        double v = q[r];
+        for (int t = 0; t < r; t++)
+            v -= l[r][t] * q[t];
+        q[r] = v / l[r][r];
+    }
+    for (int r = CPM4_N - 1; r >= 0; r--) { /* L^T z = y */
+        double v = q[r];
+        for (int t = r + 1; t < CPM4_N; t++)
+            v -= l[t][r] * q[t];
+        q[r] = v / l[r][r];
+    }
+    for (int r = 0; r < CPM4_N; r++)
+        q[r] *= dg[r] * cpm4_c[r]; /* a_j = w_j^2 q . p_j below, with the c_r folded in */
+    double il2 = 1 / r2max;
+    for (int j = 0; j < n; j++) {
+        double X = sx * h[j] * iL, Y = sy * k[j] * iL, r2 = X * X + Y * Y;
+        if (r2 < rmin2) {
+            a[j] = 0;
+            continue;
+        }
+        double X2 = X * X, Y2 = Y * Y, XY = X * Y;
+        double s = q[0] * X + q[1] * Y + q[2] * X2 + q[3] * XY + q[4] * Y2 +
+                   X2 * (q[5] * X + q[6] * Y) + Y2 * (q[7] * X + q[8] * Y) +
+                   X2 * (q[9] * X2 + q[10] * XY + q[11] * Y2) + Y2 * (q[12] * XY + q[13] * Y2);
+        a[j] = s * il2 / (r2 * r2 * r2);
+    }
+    return UMP_OK;
+}
+
 /* The kernel of MPS, PS and IPS, [HNS16] Eq. 3: w = max(r_e/r - 1, 0),
  * and 0 on the particle itself. */
 static double kernel(double r, double re)
@@ -321,6 +461,10 @@ ump_status lap_coeffs_d(const lap_params *p, int dim, const double *const *off, 
     switch (p->model) {
     case LAP_CPM:
         return dim == 2 ? cpm_coeffs2(off[0], off[1], n, 1.0, 1.0, a, err) : cpm_coeffs(dim, off, n, a, err);
+    case LAP_CPM4:
+        if (dim != 2)
+            return UMP_FAIL(err, UMP_ERR_INPUT, "CPM4 Laplacian: 2-D only (dim = %d)", dim);
+        return cpm4_coeffs2(off[0], off[1], n, 1.0, 1.0, a, err);
     case LAP_MPS:
     case LAP_PS:
     case LAP_IPS:
@@ -345,6 +489,10 @@ ump_status lap_coeffs_metric(const lap_params *p, const double *h, const double 
     if (p && p->model == LAP_CPM && n > 0) {
         UMP_CHECK(h && k && a, err, UMP_ERR_INPUT, "Laplacian: offsets or coefficients missing");
         return cpm_coeffs2(h, k, n, sx, sy, a, err);
+    }
+    if (p && p->model == LAP_CPM4 && n > 0) {
+        UMP_CHECK(h && k && a, err, UMP_ERR_INPUT, "Laplacian: offsets or coefficients missing");
+        return cpm4_coeffs2(h, k, n, sx, sy, a, err);
     }
     return lap_coeffs(p, h, k, n, l0, a, err);
 }
@@ -396,7 +544,7 @@ double lap_re_factor(const lap_params *p)
     return p->model == LAP_MPS ? LAP_RE_FACTOR_DEFAULT : LAP_RE_FACTOR_PS_DEFAULT;
 }
 
-static const char *const NAMES[] = {"CPM", "MPS", "IPS", "PS"};
+static const char *const NAMES[] = {"CPM", "MPS", "IPS", "PS", "CPM4"};
 
 const char *lap_name(lap_model m)
 {

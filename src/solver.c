@@ -169,6 +169,7 @@ typedef struct sol_work {
     double *pv;                /* stencil values (pressure gradient) */
     double *gv[SOL_MAX_VALUES]; /* gathered sample values (gather_values) */
     long lap_fallbacks, mls_fallbacks;
+    int stencil_wall;          /* the gathered stencil holds boundary particles */
     ump_err err;               /* first error of this thread in a stage */
     ump_status rc;
 } sol_work;
@@ -1261,7 +1262,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
     int buoyant = set->buoyant;
     double dnu = dt * set->nu, dkap = dt * set->kappa;
     double gx = buoyant ? set->g[m->ax[0]] : 0, gy = buoyant ? set->g[m->ax[1]] : 0;
-    const lap_params mps = {LAP_MPS, 3.1};
+    const lap_params mps = {LAP_MPS, 3.1}, cpm = {LAP_CPM, 0};
     const part_boundary *bp = &st->bp;
     int bal = buoyant && set->balanced;
     int kick = bal || set->p_theta > 0; /* gpx, gpy: grad pi_b and/or th grad p^{n-1/2} */
@@ -1281,14 +1282,25 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                 work_fail(w, rc, &e);
                 continue;
             }
+            if (c != gathered) {
+                /* CPM4 only where the stencil is all fluid: a row with
+                 * boundary particles stays CPM (see lap_row below) */
+                int wall = 0;
+                for (size_t j = 0; j < cnt; j++)
+                    wall |= w->ref[j] < 0;
+                w->stencil_wall = wall;
+            }
             gathered = c;
             int nn = offsets_but(w, cnt, (ump_idx)i, P->x[i], P->y[i]);
             double l0 = sqrt(m->area[c]);
+            const lap_params *lp = set->lap.model == LAP_CPM4 && w->stencil_wall ? &cpm : &set->lap;
             /* anisotropicCells: CPM in the metric of the particle's cell,
              * distances in units of its extents dx, dy (docs/METHOD.md
              * section 8, "Anisotropic cells"); dx = dy is the plain row */
             double sx = set->anisotropic ? 1 / m->dx[c] : 1, sy = set->anisotropic ? 1 / m->dy[c] : 1;
-            if (lap_coeffs_metric(&set->lap, w->h, w->k, nn, l0, sx, sy, w->c0, &e) != UMP_OK) {
+            if (lap_coeffs_metric(lp, w->h, w->k, nn, l0, sx, sy, w->c0, &e) != UMP_OK &&
+                (lp->model != LAP_CPM4 || /* CPM4 falls back to CPM, then MPS */
+                 lap_coeffs_metric(&cpm, w->h, w->k, nn, l0, sx, sy, w->c0, &e) != UMP_OK)) {
                 w->lap_fallbacks++;
                 if ((rc = lap_coeffs(&mps, w->h, w->k, nn, l0, w->c0, &e)) != UMP_OK) {
                     work_fail(w, rc, &e);

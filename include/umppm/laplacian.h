@@ -10,6 +10,12 @@
  *            weighted least squares over the second-order Taylor basis
  *            (2, 5, 9 terms in 1-, 2-, 3-D), w_j = 1/r^3. Exact for
  *            quadratic fields on any non-degenerate cloud.
+ *   LAP_CPM4 the same fit over the fourth-order Taylor basis (2-D only,
+ *            14 terms), same weights: exact for quartic fields, so the
+ *            quadratic fit's O(h^2) truncation error (the quartic terms it
+ *            leaves in the second derivatives) is gone. Needs 14 distinct
+ *            neighbours spread in 2-D; not in the papers (docs/METHOD.md
+ *            section 8, "CPM4").
  *   LAP_MPS  Koshizuka's model, [NSH16] Eq. (15):
  *            a_j = 2d w_j / sum_j w_j r_j^2.
  *   LAP_PS   particle smoothing, Hwang, Ng & Sheu (2016) [HNS16] Eq. (2):
@@ -28,7 +34,7 @@
 
 #include "umppm/ump.h"
 
-typedef enum { LAP_CPM, LAP_MPS, LAP_IPS, LAP_PS } lap_model;
+typedef enum { LAP_CPM, LAP_MPS, LAP_IPS, LAP_PS, LAP_CPM4 } lap_model;
 
 #define LAP_MAX_DIM 3
 /* Default r_e / l0: 2.1 for MPS (Koshizuka), 2.0 for PS and IPS ([HNS16],

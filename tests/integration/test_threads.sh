@@ -5,7 +5,8 @@
 # Cases: the 20x20 blockMesh cavity (Re 100) with the adaptive UMPPM variant
 # (deletion and refill every step, so particle counts and order matter), and
 # the Taylor-Green vortex on 1600 periodic crossed triangles (UMPPM*),
-# 20 steps each, and on 25 600 triangles for 5 steps (threaded binning); a
+# 20 steps each (the cavity also with laplacian CPM4 and pressureTheta
+# 0.5), and on 25 600 triangles for 5 steps (threaded binning); a
 # 20 x 10 channel with the boundary conditions of issue 15 (inlet
 # totalPressure + pressureInletOutletVelocity with tangentialVelocity,
 # outlet outletInlet U + uniformFixedValue sine p, one wall slip), 10 steps.
@@ -34,6 +35,13 @@ cp -r "$top/tests/cases/cavity" "$cav"
 sed -i 's/^endTime .*/endTime 0.1;/; s/^writeInterval .*/writeInterval 20;/' "$cav/system/controlDict"
 printf 'UMPPM { variant UMPPM; alpha 0.09; }\n' >> "$cav/system/fvSolution"
 (cd "$cav" && blockMesh > log.blockMesh 2>&1) || { echo "FAIL: blockMesh"; exit 1; }
+# the same cavity, UMPPM*, laplacian CPM4 (quartic rows inside, CPM rows
+# next to the walls) with pressureTheta 0.5
+cav4=$work/cavity4
+cp -r "$top/tests/cases/cavity" "$cav4"
+sed -i 's/^endTime .*/endTime 0.1;/; s/^writeInterval .*/writeInterval 20;/' "$cav4/system/controlDict"
+printf 'UMPPM { laplacian CPM4; pressureTheta 0.5; }\n' >> "$cav4/system/fvSolution"
+(cd "$cav4" && blockMesh > log.blockMesh 2>&1) || { echo "FAIL: blockMesh"; exit 1; }
 
 # Taylor-Green, 1600 crossed triangles, UMPPM*, 20 steps of 0.00625
 tg=$work/tg
@@ -113,7 +121,7 @@ boundaryField
 PF
 (cd "$bcs" && blockMesh > log.blockMesh 2>&1) || { echo "FAIL: blockMesh (bcs)"; exit 1; }
 
-for c in "$cav:0.1" "$tg:0.125" "$big:0.0078125" "$bcs:0.05"; do
+for c in "$cav:0.1" "$cav4:0.1" "$tg:0.125" "$big:0.0078125" "$bcs:0.05"; do
     dir=${c%%:*} t=${c##*:} name=$(basename "${c%%:*}")
     for n in 1 2; do
         r=$work/$name-$n

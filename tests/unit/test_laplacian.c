@@ -216,6 +216,89 @@ static void test_cpm_order(void **state)
     assert_true(log2(r0 / r1) >= 1.8);
 }
 
+/* CPM4 (the fourth-order basis): exact for quartics on irregular
+ * 24-neighbour clouds of any scale, also in a stretched metric; a jittered
+ * cloud's error of a smooth field falls at order >= 2.5 (a quartic fit:
+ * the second derivatives' error is O(h^3) on an irregular cloud, O(h^4) on
+ * the lattice), where CPM falls at order 1. */
+static double quartic(const double *c, double x, double y)
+{
+    double s = 0;
+    int m = 0;
+    for (int d = 0; d <= 4; d++)
+        for (int e = 0; e <= d; e++)
+            s += c[m++] * pow(x, e) * pow(y, d - e);
+    return s;
+}
+static double quartic_lap(const double *c, double x, double y)
+{
+    double s = 0;
+    int m = 0;
+    for (int d = 0; d <= 4; d++)
+        for (int e = 0; e <= d; e++, m++) {
+            int f = d - e;
+            if (e >= 2)
+                s += c[m] * e * (e - 1) * pow(x, e - 2) * pow(y, f);
+            if (f >= 2)
+                s += c[m] * f * (f - 1) * pow(x, e) * pow(y, f - 2);
+        }
+    return s;
+}
+
+static void test_cpm4(void **state)
+{
+    (void)state;
+    tu_rng_seed(31);
+    const lap_params CPM4 = {LAP_CPM4, 0};
+    double hh[NMAX], kk[NMAX], a[NMAX], phi[NMAX], worst = 0, worst_m = 0;
+    ump_err err;
+    for (int t = 0; t < 400; t++) {
+        int metric = t % 2;
+        double h = pow(10, tu_rnd_in(-4, 2)), ax = metric ? pow(10, tu_rnd_in(-3, 3)) : 1, xi, yi, c[15];
+        int n = cloud24(h, 0.45, tu_rnd_in(-10, 10) * h, tu_rnd_in(-10, 10) * h, &xi, &yi, hh, kk);
+        for (int j = 0; j < n; j++)
+            hh[j] *= ax;
+        xi *= ax;
+        int m = 0;
+        for (int d = 0; d <= 4; d++)
+            for (int e = 0; e <= d; e++) /* each term of size 1 on the cloud */
+                c[m++] = tu_rnd_in(-1, 1) / (pow(ax * h, e) * pow(h, d - e));
+        assert_int_equal(metric ? lap_coeffs_metric(&CPM4, hh, kk, n, h, 1 / ax, 1, a, &err)
+                                : lap_coeffs(&CPM4, hh, kk, n, h, a, &err),
+                         UMP_OK);
+        for (int j = 0; j < n; j++) /* about (xi, yi): the polynomial in the offsets */
+            phi[j] = quartic(c, hh[j], kk[j]);
+        double sc, lap = apply(a, phi, quartic(c, 0, 0), n, &sc), ex = quartic_lap(c, 0, 0);
+        double rel = fabs(lap - ex) / fmax(fabs(ex), sc);
+        if (metric)
+            worst_m = fmax(worst_m, rel);
+        else
+            worst = fmax(worst, rel);
+        if (!(rel <= 1e-8))
+            fail_msg("trial %d (h %g, ax %g): CPM4 %.17g, exact %.17g, rel %.3g", t, h, ax, lap, ex, rel);
+    }
+    /* too few neighbours for 14 terms: refused (the solver falls back to CPM) */
+    assert_int_equal(lap_coeffs(&CPM4, hh, kk, 13, 1, a, &err), UMP_ERR_SINGULAR);
+    print_message("CPM4 quartics: worst rel. error %.3g (200 clouds), %.3g (200 stretched "
+                  "1e-3..1e3); 13 neighbours: %s\n", worst, worst_m, err.msg);
+    enum { NH = 4 };
+    const double hs[NH] = {0.1, 0.05, 0.025, 0.0125};
+    double e4[NH], e2[NH];
+    for (int k = 0; k < NH; k++) {
+        e4[k] = lap_error(&CPM4, hs[k], 0.3, 400);
+        e2[k] = lap_error(&CPM, hs[k], 0.3, 400);
+        print_message("jitter 0.3 h, h %-7g max err CPM4 %.3e CPM %.3e\n", hs[k], e4[k], e2[k]);
+    }
+    double p4 = log(e4[0] / e4[NH - 1]) / log(hs[0] / hs[NH - 1]);
+    print_message("CPM4 observed order (jitter 0.3 h): %.2f\n", p4);
+    assert_true(p4 >= 2.5);
+    for (int k = 0; k < NH; k++)
+        assert_true(e4[k] < e2[k]);
+    double r0 = lap_error(&CPM4, 0.05, 0, 50), r1 = lap_error(&CPM4, 0.025, 0, 50);
+    print_message("CPM4 regular lattice: err %.3e -> %.3e (order %.2f)\n", r0, r1, log2(r0 / r1));
+    assert_true(log2(r0 / r1) >= 3.8);
+}
+
 static void test_cpm_singular(void **state)
 {
     (void)state;
@@ -722,8 +805,9 @@ static void test_names(void **state)
     assert_string_equal(lap_name(LAP_MPS), "MPS");
     assert_string_equal(lap_name(LAP_IPS), "IPS");
     assert_string_equal(lap_name(LAP_PS), "PS");
+    assert_string_equal(lap_name(LAP_CPM4), "CPM4");
     assert_string_equal(lap_name((lap_model)17), "unknown");
-    for (int m = LAP_CPM; m <= LAP_PS; m++)
+    for (int m = LAP_CPM; m <= LAP_CPM4; m++)
         assert_int_equal(lap_parse(lap_name((lap_model)m)), m);
     assert_int_equal(lap_parse("cpm"), -1);
     assert_int_equal(lap_parse(""), -1);
@@ -739,8 +823,8 @@ static void test_timing(void **state)
     enum { REP = 200000 };
     double hh[NMAX], kk[NMAX], a[NMAX], xi, yi;
     int n = cloud24(1, 0.3, 0, 0, &xi, &yi, hh, kk);
-    const lap_params *ps[2] = {&CPM, &MPS};
-    for (int m = 0; m < 2; m++) {
+    const lap_params CPM4 = {LAP_CPM4, 0}, *ps[3] = {&CPM, &MPS, &CPM4};
+    for (int m = 0; m < 3; m++) {
         struct timespec t0, t1;
         double acc = 0;
         ump_err err;
@@ -764,6 +848,7 @@ int main(void)
         cmocka_unit_test(test_cpm_quadratic_exact),
         cmocka_unit_test(test_cpm_metric),
         cmocka_unit_test(test_cpm_order),
+        cmocka_unit_test(test_cpm4),
         cmocka_unit_test(test_cpm_singular),
         cmocka_unit_test(test_cpm_coincident_neighbour),
         cmocka_unit_test(test_implicit_row),
