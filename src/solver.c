@@ -169,7 +169,6 @@ typedef struct sol_work {
     double *pv;                /* stencil values (pressure gradient) */
     double *gv[SOL_MAX_VALUES]; /* gathered sample values (gather_values) */
     long lap_fallbacks, mls_fallbacks;
-    int stencil_wall;          /* the gathered stencil holds boundary particles */
     ump_err err;               /* first error of this thread in a stage */
     ump_status rc;
 } sol_work;
@@ -1271,6 +1270,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
         sol_work *w = &S->work[thread_id()];
         ump_idx gathered = -1; /* the cell whose stencil w holds (particles are sorted by cell) */
         size_t cnt = 0;
+        int wall = 0; /* the gathered stencil holds boundary particles */
 #pragma omp for schedule(dynamic, 256)
         for (size_t i = 0; i < n; i++) {
             if (w->rc != UMP_OK)
@@ -1282,18 +1282,18 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                 work_fail(w, rc, &e);
                 continue;
             }
-            if (c != gathered) {
-                /* CPM4 only where the stencil is all fluid: a row with
-                 * boundary particles stays CPM (see lap_row below) */
-                int wall = 0;
+            if (c != gathered) { /* a new stencil: does it hold boundary particles? */
+                wall = 0;
                 for (size_t j = 0; j < cnt; j++)
                     wall |= w->ref[j] < 0;
-                w->stencil_wall = wall;
             }
             gathered = c;
             int nn = offsets_but(w, cnt, (ump_idx)i, P->x[i], P->y[i]);
             double l0 = sqrt(m->area[c]);
-            const lap_params *lp = set->lap.model == LAP_CPM4 && w->stencil_wall ? &cpm : &set->lap;
+            /* CPM4 only where the stencil is all fluid; next to a wall,
+             * inlet or outlet the quartic fit to the boundary data
+             * overshoots (docs/METHOD.md section 8, "CPM4"): CPM there */
+            const lap_params *lp = set->lap.model == LAP_CPM4 && wall ? &cpm : &set->lap;
             /* anisotropicCells: CPM in the metric of the particle's cell,
              * distances in units of its extents dx, dy (docs/METHOD.md
              * section 8, "Anisotropic cells"); dx = dy is the plain row */
