@@ -486,7 +486,7 @@ static const case_option umppm_options[] = {
     {"refill", CASE_OPT_CHOICE, "auto", -1, refill_words, refill_values, UM_NORANGE,
      "refilled particle: carried, u_P (centroid, Eq. 36); auto: by variant",
      UM_FIELD(refill_carried)},
-    {"refillParticles", CASE_OPT_LABEL, "5", 5, NULL, NULL, UM_1TO16,
+    {"refillParticles", CASE_OPT_LABEL, "4", 4, NULL, NULL, UM_1TO16,
      "refill carried: how many nearest particles lend their values", UM_FIELD(refill_k)},
     {"mlsSupport", CASE_OPT_SCALAR, "2", 2, NULL, NULL, UM_ZERO_OR_1TO4,
      "MLS weight support in cell extents; 0: Eq. 35's scales (farthest sample)",

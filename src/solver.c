@@ -232,7 +232,7 @@ void sol_default_settings(sol_settings *s)
     s->p_ref_value = 0;
     s->sort_interval = 1;
     s->refill = SOL_REFILL_CARRIED;
-    s->refill_k = 5;
+    s->refill_k = 4;
     s->mls_support = 2;
     s->p_theta = 0;
     s->anisotropic = 0;
