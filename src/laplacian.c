@@ -250,7 +250,8 @@ static inline __attribute__((always_inline)) ump_status cpm_coeffs2(const double
  * depend on the particles' order and is the Laplacian's whole O(h^2) error
  * on a lattice. With the quartic terms in the basis the row is exact for
  * quartics (docs/METHOD.md section 8, "CPM4"). Needs 14 distinct
- * neighbours spread in 2-D; UMP_ERR_SINGULAR otherwise. */
+ * neighbours spread in 2-D; UMP_ERR_SINGULAR otherwise. The solver uses
+ * it only for stencils without boundary particles (solver.c, Step 6). */
 enum { CPM4_N = 14, CPM4_DEG = 8, CPM4_CHUNK = 32 };
 #define CPM4_PIVOT_MIN 1e-11
 /* the basis as c X^a Y^b: exponents and factors, in the order above */
@@ -260,8 +261,10 @@ static const double cpm4_c[CPM4_N] = {1,       1,       0.5,     1,       0.5,
                                       1.0 / 6, 0.5,     0.5,     1.0 / 6, 1.0 / 24,
                                       1.0 / 6, 0.25,    1.0 / 6, 1.0 / 24};
 
-static inline __attribute__((always_inline)) ump_status cpm4_coeffs2(const double *restrict h, const double *restrict k, int n, double sx,
-                               double sy, double *restrict a, ump_err *err)
+static inline __attribute__((always_inline)) ump_status cpm4_coeffs2(const double *restrict h,
+                                                                     const double *restrict k, int n,
+                                                                     double sx, double sy,
+                                                                     double *restrict a, ump_err *err)
 {
     double r2max = 0;
     for (int j = 0; j < n; j++) {
