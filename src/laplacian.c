@@ -319,7 +319,7 @@ static inline __attribute__((always_inline)) ump_status cpm4_coeffs2(const doubl
      * column from the span of the ones before it, in the weighted norm; it
      * is >= the smallest eigenvalue of A, so this under-estimates the
      * condition number -- CPM4_PIVOT_MIN is set far above round-off). */
-    double dg[CPM4_N], l[CPM4_N][CPM4_N], pmin = 1;
+    double dg[CPM4_N], l[CPM4_N][CPM4_N];
     for (int r = 0; r < CPM4_N; r++) {
         double mrr = cpm4_c[r] * cpm4_c[r] * S[2 * cpm4_a[r]][2 * cpm4_b[r]];
         if (!(mrr > 0) || !(mrr < INFINITY))
@@ -334,11 +334,9 @@ static inline __attribute__((always_inline)) ump_status cpm4_coeffs2(const doubl
         double piv = l[c][c];
         for (int t = 0; t < c; t++)
             piv -= l[c][t] * l[c][t];
-        if (!(piv > CPM4_PIVOT_MIN)) {
-            pmin = piv;
-            break;
-        }
-        pmin = fmin(pmin, piv);
+        if (!(piv > CPM4_PIVOT_MIN))
+            return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                            "CPM4 Laplacian: moment matrix singular (pivot %.3g, %d neighbours)", piv, nused);
         double lc = sqrt(piv), il = 1 / lc;
         l[c][c] = lc;
         for (int r = c + 1; r < CPM4_N; r++) {
@@ -348,9 +346,6 @@ static inline __attribute__((always_inline)) ump_status cpm4_coeffs2(const doubl
             l[r][c] = v * il;
         }
     }
-    if (!(pmin > CPM4_PIVOT_MIN))
-        return UMP_FAIL(err, UMP_ERR_SINGULAR,
-                        "CPM4 Laplacian: moment matrix singular (pivot %.3g, %d neighbours)", pmin, nused);
     /* q = D A^{-1} D (sx^2 e_hh + sy^2 e_kk), Eq. 16's rows of phi_xx, phi_yy */
     double q[CPM4_N] = {0};
     q[2] = sx * sx * dg[2], q[4] = sy * sy * dg[4];
@@ -489,13 +484,10 @@ ump_status lap_coeffs_metric(const lap_params *p, const double *h, const double 
 {
     UMP_CHECK(sx > 0 && sy > 0 && isfinite(sx) && isfinite(sy), err, UMP_ERR_INPUT,
               "Laplacian: metric (%g, %g), expected finite and > 0", sx, sy);
-    if (p && p->model == LAP_CPM && n > 0) {
+    if (p && (p->model == LAP_CPM || p->model == LAP_CPM4) && n > 0) {
         UMP_CHECK(h && k && a, err, UMP_ERR_INPUT, "Laplacian: offsets or coefficients missing");
-        return cpm_coeffs2(h, k, n, sx, sy, a, err);
-    }
-    if (p && p->model == LAP_CPM4 && n > 0) {
-        UMP_CHECK(h && k && a, err, UMP_ERR_INPUT, "Laplacian: offsets or coefficients missing");
-        return cpm4_coeffs2(h, k, n, sx, sy, a, err);
+        return p->model == LAP_CPM ? cpm_coeffs2(h, k, n, sx, sy, a, err)
+                                   : cpm4_coeffs2(h, k, n, sx, sy, a, err);
     }
     return lap_coeffs(p, h, k, n, l0, a, err);
 }

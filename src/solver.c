@@ -146,6 +146,9 @@ typedef struct sol_setup {
      * ru_q0[r] .. ru_q1[r]-1, whose particles are consecutive in the bins */
     ump_idx *ru_off, *ru_q0, *ru_q1;
     double *ru_sx, *ru_sy;
+    /* per cell: its stencil holds boundary particles (their set is fixed;
+     * laplacian CPM4 keeps CPM there) */
+    unsigned char *st_bnd;
     /* faces whose u* is interpolated (not fixed, not symmetry), by owner */
     ump_idx *of_off, *of_face;
 } sol_setup;
@@ -328,7 +331,7 @@ void sol_free(sol **pS)
     free(su->timed);
     void *arr[] = {su->u_kind, st->ub, st->vb, su->p_dir, su->p_total, su->p0, st->prgh_f, su->t_kind, su->tb, su->ghc, su->ghf,
                    su->st_off, su->st_cell, su->st_sx, su->st_sy, su->ru_off, su->ru_q0, su->ru_q1,
-                   su->ru_sx, su->ru_sy, su->of_off, su->of_face, st->p, st->pold, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
+                   su->ru_sx, su->ru_sy, su->st_bnd, su->of_off, su->of_face, st->p, st->pold, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
                    st->av, st->cnt_cell, st->pib, st->fluxb, st->pf0, st->gpx, st->gpy, st->empty,
@@ -968,6 +971,13 @@ static ump_status particles_build(sol_setup *su, sol_state *st, ump_err *err)
     UMP_CALL(stencil_build(su, err));
     UMP_CALL(owned_faces_build(su, err));
     UMP_CALL(part_boundary_create(&st->bp, m, err));
+    su->st_bnd = ump_alloc_array((size_t)m->ncells, sizeof *su->st_bnd);
+    UMP_CHECK(su->st_bnd, err, UMP_ERR_NOMEM, "particle stencils: out of memory (%ld cells)", (long)m->ncells);
+    for (ump_idx c = 0; c < m->ncells; c++) {
+        su->st_bnd[c] = 0;
+        for (ump_idx r = su->ru_off[c]; r < su->ru_off[c + 1]; r++)
+            su->st_bnd[c] |= st->bp.off[su->ru_q1[r]] > st->bp.off[su->ru_q0[r]];
+    }
     UMP_CALL(part_create((size_t)m->ncells * 2, &st->P, err));
     UMP_CALL(part_seed_centroids(st->P, m, st->uc, st->vc, st->Tc, err));
     UMP_CALL(part_sort_by_cell(st->P, &st->bins, m, err));
@@ -1270,7 +1280,6 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
         sol_work *w = &S->work[thread_id()];
         ump_idx gathered = -1; /* the cell whose stencil w holds (particles are sorted by cell) */
         size_t cnt = 0;
-        int wall = 0; /* the gathered stencil holds boundary particles */
 #pragma omp for schedule(dynamic, 256)
         for (size_t i = 0; i < n; i++) {
             if (w->rc != UMP_OK)
@@ -1282,18 +1291,13 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                 work_fail(w, rc, &e);
                 continue;
             }
-            if (c != gathered) { /* a new stencil: does it hold boundary particles? */
-                wall = 0;
-                for (size_t j = 0; j < cnt; j++)
-                    wall |= w->ref[j] < 0;
-            }
             gathered = c;
             int nn = offsets_but(w, cnt, (ump_idx)i, P->x[i], P->y[i]);
             double l0 = sqrt(m->area[c]);
             /* CPM4 only where the stencil is all fluid; next to a wall,
              * inlet or outlet the quartic fit to the boundary data
              * overshoots (docs/METHOD.md section 8, "CPM4"): CPM there */
-            const lap_params *lp = set->lap.model == LAP_CPM4 && wall ? &cpm : &set->lap;
+            const lap_params *lp = set->lap.model == LAP_CPM4 && su->st_bnd[c] ? &cpm : &set->lap;
             /* anisotropicCells: CPM in the metric of the particle's cell,
              * distances in units of its extents dx, dy (docs/METHOD.md
              * section 8, "Anisotropic cells"); dx = dy is the plain row */
