@@ -178,6 +178,12 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
         s->p_ref_cell = a->p_ref_point_cell;
     if ((int)s->lap.model < 0)
         return UMP_FAIL(err, UMP_ERR_INPUT, "system/fvSolution: unknown laplacian '%s'", a->um.laplacian);
+    /* CPM and CPM4 have no influence radius: a reFactor would do nothing */
+    if ((s->lap.model == LAP_CPM || s->lap.model == LAP_CPM4) && a->um.re_factor != 0)
+        return UMP_FAIL(err, UMP_ERR_INPUT,
+                        "system/fvSolution: UMPPM reFactor %g is the influence radius of laplacian MPS, PS or "
+                        "IPS; laplacian %s has none (remove reFactor)",
+                        a->um.re_factor, a->um.laplacian);
     return UMP_OK;
 }
 

@@ -19,7 +19,8 @@
 #     |u_N| l0 < 1e-6 and tau = diag(1, 1, 0) to 1e-6, and the ones next to a
 #     wall see the one-sided neighbourhood: max |u_N| l0 > 0.1;
 #   - reFactor 7 and an unknown laplacian end in one error naming
-#     system/fvSolution.
+#     system/fvSolution; so does reFactor with laplacian CPM or CPM4
+#     (no influence radius: it would do nothing).
 # Needs UMPPMFOAM and TOOLDIR.
 set -eu -o pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -110,6 +111,22 @@ for kv in "reFactor 7" "laplacian SPH"; do
         echo "  ok   UMPPM $1 $2 refused: $(grep FATAL "$b/log")"
     else
         echo "  FAIL UMPPM $1 $2: no error naming system/fvSolution"; tail -2 "$b/log"; fail=1
+    fi
+done
+# reFactor with a Laplacian that has no influence radius does nothing:
+# refused, naming the entry
+for m in CPM CPM4; do
+    b=$work/bad-reFactor-$m
+    mkdir -p "$b"
+    cp -r "$q/system" "$q/constant" "$q/0" "$b/"
+    foamDictionary -entry UMPPM/laplacian -set "$m" "$b/system/fvSolution" > /dev/null
+    foamDictionary -entry UMPPM/reFactor -set 2 "$b/system/fvSolution" > /dev/null
+    if (cd "$b" && "$UMPPMFOAM" > log 2>&1); then
+        echo "  FAIL laplacian $m with reFactor 2 accepted"; fail=1
+    elif grep -q "FATAL ERROR: system/fvSolution: UMPPM reFactor 2 .*laplacian $m has none" "$b/log"; then
+        echo "  ok   laplacian $m, reFactor 2 refused: $(grep FATAL "$b/log")"
+    else
+        echo "  FAIL laplacian $m, reFactor 2: no error naming the entry"; tail -2 "$b/log"; fail=1
     fi
 done
 [ "$fail" = 0 ] || { echo "work dir kept: $work"; exit 1; }
