@@ -942,6 +942,9 @@ static const case_option meshless_options[] = {
      "FPM: ... or where the neighbours' centroid is off by > surfaceShift l0", ML_FIELD(shift_s)},
     {"densitySourceFPM", CASE_OPT_SCALAR, "0.02", 0.02, NULL, NULL, ML_CLOSED(0, 1),
      "FPM: weight of the density deviation added to Eq. 24's source (0: the paper's alone)", ML_FIELD(gamma_fpm)},
+    {"laplacianStabilization", CASE_OPT_SCALAR, "1", 1, NULL, NULL, ML_CLOSED(0, 1),
+     "FPM: weight of the positive Laplacian of the quadratic fit's residual added to the pressure equation's "
+     "MLS Laplacian (0: Eq. 24's alone, which diverges in violent flows)", ML_FIELD(stab_fpm)},
     {"wallDistance", CASE_OPT_SCALAR, "0.25", 0.25, NULL, NULL, ML_CLOSED(0, 0.5),
      "FPM: fluid particles closer to a wall go back to this distance / l0; 0: off", ML_FIELD(d_wall)},
     {"mergeDistance", CASE_OPT_SCALAR, "0.5", 0.5, NULL, NULL, ML_CLOSED(0, 0.9),

@@ -51,6 +51,7 @@ struct fpm {
     size_t *unk_part;
     pnbr nb;
     double *cx, *cy, *cl;    /* [rcap] per row entry */
+    double *cp, *sp;         /* the pressure Laplacian (fpm_laplacian_row): [rcap], [cap] */
     size_t rcap;
     /* the pressure system, rows of unknowns */
     ump_idx *rp, *ci;
@@ -113,6 +114,7 @@ static ump_status reserve(fpm *f, ump_err *err)
     GROW_TO(f->sx, nc);
     GROW_TO(f->sy, nc);
     GROW_TO(f->sl, nc);
+    GROW_TO(f->sp, nc);
     GROW_TO(f->src, nc);
     GROW_TO(f->surf, nc);
     GROW_TO(f->quad, nc);
@@ -133,7 +135,7 @@ ump_status fpm_create(const fpm_params *prm, part_set *s, size_t nwall, size_t n
 {
     *out = NULL;
     UMP_CHECK(prm->l0 > 0 && prm->h >= 2 * prm->l0 && prm->rho > 0 && prm->nu >= 0 && prm->re_s > 1 &&
-                  prm->beta > 0 && prm->beta < 1 && prm->p_tol > 0 && prm->maxit > 0 && nwall <= nsolid &&
+                  prm->beta > 0 && prm->beta < 1 && prm->stab >= 0 && prm->p_tol > 0 && prm->maxit > 0 && nwall <= nsolid &&
                   nsolid <= s->n,
               err, UMP_ERR_INPUT, "FPM: parameters out of range (l0 %g, h0 %g, rho %g, nu %g, r_s %g, beta %g)",
               prm->l0, prm->h, prm->rho, prm->nu, prm->re_s, prm->beta);
@@ -200,6 +202,8 @@ void fpm_free(fpm **pf)
     free(f->cx);
     free(f->cy);
     free(f->cl);
+    free(f->cp);
+    free(f->sp);
     free(f->rp);
     free(f->ci);
     free(f->av);
@@ -283,6 +287,46 @@ double fpm_max_dt(const fpm *f, double co, double cg, double u_wave)
     return dt;
 }
 
+/* ---- the pressure Laplacian ------------------------------------------------------ */
+
+/* See fpm.h. The bracket, expanded over the row: sum_j c_j p_j - (sum_j
+ * c_j) p_i - m . grad p_i - (mxx H_xx + 2 mxy H_xy + myy H_yy) / 2 with
+ * the c-weighted moments m = sum_j c_j d_j, mab = sum_j c_j d_ja d_jb,
+ * and each derivative the row of its MLS coefficients. */
+void fpm_laplacian_row(const double *dx, const double *dy, int k, double h, mls_wfun wf, const double *cx,
+                       const double *cy, const double *cxx, const double *cxy, const double *cyy, double eps,
+                       double *lap)
+{
+    for (int t = 0; t < k; t++)
+        lap[t] = (cxx ? cxx[t] : 0) + (cyy ? cyy[t] : 0); /* Eq. 18: the MLS Laplacian */
+    if (eps == 0)
+        return;
+    double sw = 0;
+    for (int t = 0; t < k; t++) {
+        double w, w1, wq, w2, r2 = dx[t] * dx[t] + dy[t] * dy[t];
+        mls_wfun_eval(wf, sqrt(r2) / h, &w, &w1, &wq, &w2);
+        sw += w * r2;
+    }
+    if (!(sw > 0))
+        return;
+    double csum = 0, mx = 0, my = 0, mxx = 0, mxy = 0, myy = 0;
+    for (int t = 0; t < k; t++) { /* the positive weights c_j; the particle itself (d = 0) gets none */
+        double w, w1, wq, w2, r2 = dx[t] * dx[t] + dy[t] * dy[t];
+        mls_wfun_eval(wf, sqrt(r2) / h, &w, &w1, &wq, &w2);
+        double c = r2 > 0 ? 4 * w / sw : 0;
+        lap[t] += eps * c;
+        csum += c;
+        mx += c * dx[t], my += c * dy[t];
+        mxx += c * dx[t] * dx[t], mxy += c * dx[t] * dy[t], myy += c * dy[t] * dy[t];
+    }
+    for (int t = 0; t < k; t++) {
+        double r = (t == 0 ? csum : 0) + mx * cx[t] + my * cy[t];
+        if (cxx && cxy && cyy)
+            r += 0.5 * mxx * cxx[t] + mxy * cxy[t] + 0.5 * myy * cyy[t];
+        lap[t] -= eps * r;
+    }
+}
+
 /* ---- MLS rows ------------------------------------------------------------------ */
 
 
@@ -311,6 +355,7 @@ static ump_status mls_rows(fpm *f, fpm_stats *st, ump_err *err)
         GROW_TO(f->cx, nc);
         GROW_TO(f->cy, nc);
         GROW_TO(f->cl, nc);
+        GROW_TO(f->cp, nc);
         f->rcap = nc;
     }
     const double rs = f->P.re_s * f->P.l0, h = f->P.h, thr = f->P.beta, shift = f->P.shift * f->P.l0;
@@ -339,16 +384,16 @@ static ump_status mls_rows(fpm *f, fpm_stats *st, ump_err *err)
 #pragma omp parallel reduction(+ : nlin)
     {
         double dx[FPM_MAXROW + 1], dy[FPM_MAXROW + 1], c1[FPM_MAXROW + 1], c2[FPM_MAXROW + 1],
-            c3[FPM_MAXROW + 1], c5[FPM_MAXROW + 1];
+            c3[FPM_MAXROW + 1], c4[FPM_MAXROW + 1], c5[FPM_MAXROW + 1], cl[FPM_MAXROW + 1];
         int pos[FPM_MAXROW + 1];
-        double *c[MLS_NOUT] = {NULL, c1, c2, c3, NULL, c5};
+        double *c[MLS_NOUT] = {NULL, c1, c2, c3, c4, c5};
 #pragma omp for schedule(dynamic, 64)
         for (size_t i = 0; i < n; i++) {
             if (f->kind[i] >= FPM_GHOST)
                 continue;
             for (size_t q = R->off[i]; q < R->off[i + 1]; q++)
-                f->cx[q] = f->cy[q] = f->cl[q] = 0;
-            f->sx[i] = f->sy[i] = f->sl[i] = 0;
+                f->cx[q] = f->cy[q] = f->cl[q] = f->cp[q] = 0;
+            f->sx[i] = f->sy[i] = f->sl[i] = f->sp[i] = 0;
             f->quad[i] = 0;
             if (f->kind[i] == FPM_WALL && f->surf[i])
                 continue; /* dry: p = 0, no row */
@@ -377,6 +422,12 @@ static ump_status mls_rows(fpm *f, fpm_stats *st, ump_err *err)
                 f->cx[q] = c1[t];
                 f->cy[q] = c2[t];
                 f->cl[q] = c3[t] + c5[t];
+            }
+            if (f->kind[i] == FPM_FLUID && f->quad[i]) { /* the pressure row's Laplacian */
+                fpm_laplacian_row(dx, dy, k, h, wf, c1, c2, c3, c4, c5, f->P.stab, cl);
+                f->sp[i] = cl[0];
+                for (int t = 1; t < k; t++)
+                    f->cp[R->off[i] + (size_t)pos[t]] = cl[t];
             }
         }
     }
@@ -448,7 +499,7 @@ static ump_status solve_ppe(fpm *f, const double *src, const double *flux, const
     for (size_t r = 0; r < nu; r++) {
         size_t i = f->unk_part[r], k = 1;
         for (size_t q = R->off[i]; q < R->off[i + 1]; q++)
-            k += f->unk[R->j[q]] >= 0 && (f->cx[q] != 0 || f->cy[q] != 0 || f->cl[q] != 0);
+            k += f->unk[R->j[q]] >= 0 && (f->cx[q] != 0 || f->cy[q] != 0 || f->cp[q] != 0);
         f->rp[r + 1] = f->rp[r] + (ump_idx)k;
     }
     UMP_CALL(matrix_reserve(f, nu, (size_t)f->rp[nu], err));
@@ -461,12 +512,12 @@ static ump_status solve_ppe(fpm *f, const double *src, const double *flux, const
          * sign on the diagonal for ILU(0)) */
         double nx = wall ? f->wnx[i] : 0, ny = wall ? f->wny[i] : 0, sc = wall ? -l0 : 1, b = wall ? flux[i] : src[i];
         f->ci[k] = (ump_idx)r;
-        f->av[k++] = wall ? sc * (nx * f->sx[i] + ny * f->sy[i]) : f->sl[i];
+        f->av[k++] = wall ? sc * (nx * f->sx[i] + ny * f->sy[i]) : f->sp[i];
         for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
             size_t j = R->j[q];
-            if (f->cx[q] == 0 && f->cy[q] == 0 && f->cl[q] == 0)
+            if (f->cx[q] == 0 && f->cy[q] == 0 && f->cp[q] == 0)
                 continue;
-            double a = wall ? sc * (nx * f->cx[q] + ny * f->cy[q]) : f->cl[q];
+            double a = wall ? sc * (nx * f->cx[q] + ny * f->cy[q]) : f->cp[q];
             long u = f->unk[j];
             if (u >= 0) {
                 f->ci[k] = (ump_idx)u;

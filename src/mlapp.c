@@ -572,6 +572,7 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
         F->beta = a->ml.beta_s;
         F->shift = a->ml.shift_s;
         F->gamma = a->ml.gamma_fpm;
+        F->stab = a->ml.stab_fpm;
         F->p_tol = P->p_tol;
         F->maxit = P->maxit;
         UMP_CALL(fpm_create(F, a->s, nwp, ns, a->wnx, a->wny, &a->fpm, err));
@@ -582,6 +583,11 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
                a->ml.support, F->h, F->weight == MLS_WFUN_SPLINE ? "spline (Eq. 5)" : "exponential (Eq. 4)",
                F->beta, fpm_n0(a->fpm), F->re_s, F->shift, a->ml.fpm_co, a->ml.fpm_cg,
                F->nu > 0 ? ", dt <= 0.1 l0^2/nu (explicit viscosity)" : "");
+        if (F->stab > 0)
+            printf("FPM: pressure Laplacian: MLS (Eqs. 16-18) + %g x the positive Laplacian of its quadratic fit's "
+                   "residual (laplacianStabilization)\n", F->stab);
+        else
+            printf("FPM: pressure Laplacian: MLS (Eqs. 16-18) alone (laplacianStabilization 0, as the paper)\n");
         return UMP_OK;
     }
     UMP_CALL(mps_create(P, a->s, ns, a->kinds, &a->solver, err));

@@ -61,6 +61,8 @@ typedef struct fpm_params {
     double beta;        /* free surface: n < beta n0 */
     double shift;       /* ... or the neighbours' centroid off by > shift l0 */
     double gamma;       /* weight of the density deviation in the PPE source (0: Eq. 24 alone) */
+    double stab;        /* weight of the stabilising term of the PPE Laplacian (0: Eq. 24's MLS
+                           Laplacian alone; fpm_laplacian_row) */
     double p_tol;       /* BiCGSTAB tolerance */
     int maxit;          /* BiCGSTAB iteration limit */
 } fpm_params;
@@ -102,6 +104,29 @@ ump_status fpm_step(fpm *f, double dt, fpm_stats *st, ump_err *err);
  * src, flux, pd [n] by particle; the result in fpm_pressure. */
 ump_status fpm_poisson(fpm *f, const double *src, const double *flux, const double *pd, fpm_stats *st,
                        ump_err *err);
+
+/* The Laplacian of a fluid particle's pressure row (docs/METHOD.md 11,
+ * "Stabilised pressure Laplacian"; a departure from Eq. 24, which takes
+ * the MLS Laplacian of Eqs. 16-18 alone):
+ *   L p_i = lap_MLS p_i
+ *         + eps sum_j c_j [p_j - p_i - d_j . grad p_i - d_j d_j : H p_i / 2],
+ *   c_j = 4 w(|d_j| / h) / sum_k w(|d_k| / h) |d_k|^2   (2-D: L |d|^2 = 4),
+ * grad p_i and the Hessian H p_i the MLS derivatives of the same fit. The
+ * bracket is the residual of the particle's quadratic Taylor polynomial:
+ * it vanishes for quadratics, so L stays exact for them (a hydrostatic
+ * pressure is solved exactly); on a rough field the fit is smooth and the
+ * term is a Laplacian with positive weights, which the MLS Laplacian is
+ * not. Why it matters: with L, D, G the operators of Eqs. 24 and 22, each
+ * step maps the last pressure to the next through I - L^-1 D G (the
+ * divergence the last correction left behind is the next source), a map
+ * independent of dt; with the MLS Laplacian alone its spectral radius on
+ * irregular clouds exceeds 1 (test_fpm). In: the k offsets of the row
+ * (index 0 the particle itself, at offset 0), the weight function and h
+ * of the fit, its outputs cx, cy (d/dx, d/dy) and cxx, cxy, cyy (the
+ * second derivatives; NULL or all zero for a linear fit). Out: lap[k]. */
+void fpm_laplacian_row(const double *dx, const double *dy, int k, double h, mls_wfun wf, const double *cx,
+                       const double *cy, const double *cxx, const double *cxy, const double *cyy, double eps,
+                       double *lap);
 
 /* The largest dt of Eqs. 26-27 (coefficients co, cg) and of the explicit
  * viscosity, for the current fluid velocities; Eq. 26 takes the speed
