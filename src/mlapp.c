@@ -1159,6 +1159,10 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
     printf("\nStarting time loop\n\n");
     long step = 0;
     size_t run_left = 0, run_walled = 0, run_lost = 0, run_merged = 0, run_inserted = 0, run_shifted = 0;
+    /* FPM: the liquid's particles at the start, against which merging net of
+     * insertion is measured (each particle stands for l0^2 of liquid) */
+    const size_t nfluid0 = a.s->n - ml_nsolid(&a);
+    int loss_warned = 0;
     double stage_cpu[6] = {0}, stage_wall[6] = {0};
     static const char *const mps_stage[6] = {"neighbours, number density", "viscosity (implicit, CG)",
                                              "pressure (PPE, CG)", "correction", "locate on the mesh", ""};
@@ -1280,6 +1284,26 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         if (lost)
             printf("--> meshlessFoam Warning: %zu particles could not be located on the mesh and were removed\n",
                    lost);
+        if (a.fpm && run_merged > run_inserted && nfluid0 > 0) {
+            /* no silent loss of liquid: merging that insertion does not
+             * make up for removes l0^2 of liquid each time */
+            double loss = (double)(run_merged - run_inserted) / (double)nfluid0;
+            if (loss > a.ml.max_loss) {
+                rc = UMP_FAIL(err, UMP_ERR_INPUT,
+                              "FPM particle management has removed %.1f %% of the liquid's %zu particles by time %s "
+                              "(%zu merged, %zu inserted): the liquid's volume is no longer conserved (the particle "
+                              "distribution has degenerated); nothing of this step was written (meshless "
+                              "maxParticleLoss %g)", 100 * loss, nfluid0, t.name, run_merged, run_inserted,
+                              a.ml.max_loss);
+                goto done;
+            }
+            if (!loss_warned && loss > 0.05) {
+                printf("--> meshlessFoam Warning: FPM particle management has removed %.1f %% of the liquid's "
+                       "particles (%zu merged, %zu inserted): the liquid's volume shrinks by as much\n",
+                       100 * loss, run_merged, run_inserted);
+                loss_warned = 1;
+            }
+        }
         if (!(umax <= a.u_bound)) {
             rc = UMP_FAIL(err, UMP_ERR_INPUT,
                           "the run has diverged at time %s: particle %lld at (%g %g) has |U| = %g m/s > %g "

@@ -226,6 +226,7 @@ typedef struct case_meshless {
     double shift_s;              /* free surface: centroid offset / l0 */
     double gamma_fpm;            /* FPM: weight of the density deviation in the PPE source */
     double stab_fpm;             /* FPM: weight of the stabilising term of the PPE Laplacian */
+    double max_loss;             /* FPM: stop when this fraction of the liquid's particles is merged away */
     double d_wall, d_min, r_hole;/* particle management / l0 (fpm_manage) */
     double shift_a;              /* particle shifting coefficient; 0: off */
     long manage_interval;        /* steps between particle managements */
