@@ -135,8 +135,8 @@ ump_status fpm_create(const fpm_params *prm, part_set *s, size_t nwall, size_t n
 {
     *out = NULL;
     UMP_CHECK(prm->l0 > 0 && prm->h >= 2 * prm->l0 && prm->rho > 0 && prm->nu >= 0 && prm->re_s > 1 &&
-                  prm->beta > 0 && prm->beta < 1 && prm->stab >= 0 && prm->p_tol > 0 && prm->maxit > 0 && nwall <= nsolid &&
-                  nsolid <= s->n,
+                  prm->beta > 0 && prm->beta < 1 && prm->stab >= 0 && prm->p_tol > 0 && prm->maxit > 0 &&
+                  nwall <= nsolid && nsolid <= s->n,
               err, UMP_ERR_INPUT, "FPM: parameters out of range (l0 %g, h0 %g, rho %g, nu %g, r_s %g, beta %g)",
               prm->l0, prm->h, prm->rho, prm->nu, prm->re_s, prm->beta);
     UMP_CHECK(prm->weight == MLS_WFUN_EXP || prm->weight == MLS_WFUN_SPLINE, err, UMP_ERR_INPUT,
