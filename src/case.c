@@ -945,6 +945,10 @@ static const case_option meshless_options[] = {
     {"laplacianStabilization", CASE_OPT_SCALAR, "1", 1, NULL, NULL, ML_CLOSED(0, 1),
      "FPM: weight of the positive Laplacian of the quadratic fit's residual added to the pressure equation's "
      "MLS Laplacian (0: Eq. 24's alone, which diverges in violent flows)", ML_FIELD(stab_fpm)},
+    {"surfaceDampingFPM", CASE_OPT_SCALAR, "0.1", 0.1, NULL, NULL, ML_CLOSED(0, 1),
+     "FPM: damping of free-surface particles' velocity towards their fluid neighbours', nu_s = surfaceDampingFPM l0 "
+     "sqrt(|g| l0) (0: off; without it the surface row's motion grows from about 1 s in a gentle standing wave)",
+     ML_FIELD(surf_damp_fpm)},
     {"wallDistance", CASE_OPT_SCALAR, "0.25", 0.25, NULL, NULL, ML_CLOSED(0, 0.5),
      "FPM: fluid particles closer to a wall go back to this distance / l0; 0: off", ML_FIELD(d_wall)},
     {"mergeDistance", CASE_OPT_SCALAR, "0.5", 0.5, NULL, NULL, ML_CLOSED(0, 0.9),

@@ -633,6 +633,7 @@ ump_status fpm_step(fpm *f, double dt, fpm_stats *st, ump_err *err)
      * next to a wall sees a jump of g dt over l0/2, and the hydrostatic
      * pressure came out 2.1 times rho g h (measured, the tank at rest) */
     const double nu = f->P.nu;
+    const double nus = f->P.surf_damp * f->P.l0 * sqrt(hypot(f->P.g[0], f->P.g[1]) * f->P.l0);
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i++) {
         if (f->kind[i] == FPM_WALL) {
@@ -651,6 +652,35 @@ ump_status fpm_step(fpm *f, double dt, fpm_stats *st, ump_err *err)
         }
         f->ut[i] = s->u[i] + dt * (nu * lu + f->P.g[0]);
         f->vt[i] = s->v[i] + dt * (nu * lv + f->P.g[1]);
+        if (nus > 0 && f->surf[i]) {
+            /* free-surface damping (a departure, docs/METHOD.md 11):
+             * nu_s 4/sum_j w_j r_j^2 sum_j w_j (u_j - u_i) over the fluid
+             * neighbours within h0. The MLS operators do not damp the
+             * surface row's motion relative to the rows below (measured: nu
+             * 1e-5, or a damping of the quadratic fit's residual, left its
+             * growing orbits nearly as they were; presumably a one-sided
+             * quadratic fit over three rows follows the surface row) */
+            const pnbr *R = &f->nb;
+            double sw = 0, sw0 = 0, ru = 0, rv = 0;
+            for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
+                size_t j = R->j[q];
+                if (f->kind[j] != FPM_FLUID || R->r[q] >= f->P.h)
+                    continue;
+                double w, wd1, wq, w2;
+                mls_wfun_eval(f->P.weight, R->r[q] / f->P.h, &w, &wd1, &wq, &w2);
+                sw += w * R->r[q] * R->r[q];
+                sw0 += w;
+                ru += w * (s->u[j] - s->u[i]);
+                rv += w * (s->v[j] - s->v[i]);
+            }
+            if (sw > 0) {
+                double a = dt * nus * 4 / sw;
+                if (a * sw0 > 0.5)
+                    a = 0.5 / sw0; /* explicit: at most half way to the neighbours' mean per step */
+                f->ut[i] += a * ru;
+                f->vt[i] += a * rv;
+            }
+        }
     }
     c0 = cpu_seconds(), w0 = wall_seconds();
     st->cpu[1] += c0 - c1, st->wall[1] += w0 - w1;

@@ -573,6 +573,7 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
         F->shift = a->ml.shift_s;
         F->gamma = a->ml.gamma_fpm;
         F->stab = a->ml.stab_fpm;
+        F->surf_damp = a->ml.surf_damp_fpm;
         F->p_tol = P->p_tol;
         F->maxit = P->maxit;
         UMP_CALL(fpm_create(F, a->s, nwp, ns, a->wnx, a->wny, &a->fpm, err));
@@ -588,6 +589,10 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
                    "residual (laplacianStabilization)\n", F->stab);
         else
             printf("FPM: pressure Laplacian: MLS (Eqs. 16-18) alone (laplacianStabilization 0, as the paper)\n");
+        if (F->surf_damp > 0)
+            printf("FPM: free-surface particles' velocity damped towards their fluid neighbours' with nu_s = %g m^2/s "
+                   "(surfaceDampingFPM %g x l0 sqrt(|g| l0))\n",
+                   F->surf_damp * l0 * sqrt(hypot(F->g[0], F->g[1]) * l0), F->surf_damp);
         return UMP_OK;
     }
     UMP_CALL(mps_create(P, a->s, ns, a->kinds, &a->solver, err));

@@ -199,9 +199,10 @@ ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *e
  *              maxIter 5000; cloudName meshlessCloud; maxVelocity 0;
  *              supportRadius 3; weightFunction spline; courantFPM 0.12;
  *              gravityStepFPM 0.24; surfaceRadius 3; surfaceBeta 0.8; surfaceShift 0.2; densitySourceFPM 0.02;
+ *              surfaceDampingFPM 0.1;
  *              wallDistance 0.25; mergeDistance 0.5; holeRadius 0.9;
  *              particleShifting 0; manageInterval 1; }
- * (the last thirteen serve method FPM; reNumberDensity .. restitution and
+ * (the last fourteen serve method FPM; reNumberDensity .. restitution and
  * maxCo serve MPS) */
 typedef struct case_meshless {
     char method[16];             /* MPS */
@@ -226,6 +227,7 @@ typedef struct case_meshless {
     double shift_s;              /* free surface: centroid offset / l0 */
     double gamma_fpm;            /* FPM: weight of the density deviation in the PPE source */
     double stab_fpm;             /* FPM: weight of the stabilising term of the PPE Laplacian */
+    double surf_damp_fpm;        /* FPM: free-surface velocity damping / (l0 sqrt(|g| l0)) */
     double max_loss;             /* FPM: stop when this fraction of the liquid's particles is merged away */
     double d_wall, d_min, r_hole;/* particle management / l0 (fpm_manage) */
     double shift_a;              /* particle shifting coefficient; 0: off */

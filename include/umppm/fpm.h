@@ -63,6 +63,8 @@ typedef struct fpm_params {
     double gamma;       /* weight of the density deviation in the PPE source (0: Eq. 24 alone) */
     double stab;        /* weight of the stabilising term of the PPE Laplacian (0: Eq. 24's MLS
                            Laplacian alone; fpm_laplacian_row) */
+    double surf_damp;   /* damping of a free-surface particle's velocity towards its fluid
+                           neighbours', nu_s = surf_damp l0 sqrt(|g| l0) (0: off; fpm_step) */
     double p_tol;       /* BiCGSTAB tolerance */
     int maxit;          /* BiCGSTAB iteration limit */
 } fpm_params;

@@ -159,9 +159,9 @@ fi
 # unmodified but for endTime: by FPM it runs to 0.25 s (with Eq. 24's MLS
 # Laplacian alone, laplacianStabilization 0, it diverged at 0.155 s, at
 # the impact: docs/METHOD.md 11), its front at t = 0.2 s within 12 % of
-# interFoam's on the same mesh (measured 1.082; MPS 1.040), and merging net
+# interFoam's on the same mesh (measured 1.054; MPS 1.040), and merging net
 # of insertion removes under 8 % of the liquid's 1104 particles (measured
-# 4.5 %)
+# 3.4 %)
 src=/usr/share/doc/openfoam-examples/examples/multiphase/interFoam/laminar/damBreak/damBreak
 fb=$work/fpmObstacle
 if [ -d "$src" ]; then
