@@ -198,11 +198,12 @@ ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *e
  *              pressureTolerance 1e-8; velocityTolerance 1e-10;
  *              maxIter 5000; cloudName meshlessCloud; maxVelocity 0;
  *              supportRadius 3; weightFunction spline; courantFPM 0.12;
- *              gravityStepFPM 0.24; surfaceRadius 3; surfaceBeta 0.8; surfaceShift 0.2; densitySourceFPM 0.02;
- *              surfaceDampingFPM 0.1;
+ *              gravityStepFPM 0.24; surfaceRadius 3; surfaceBeta 0.8;
+ *              surfaceShift 0.2; densitySourceFPM 0.02;
+ *              laplacianStabilization 1; surfaceDampingFPM 0.1;
  *              wallDistance 0.25; mergeDistance 0.5; holeRadius 0.9;
- *              particleShifting 0; manageInterval 1; }
- * (the last fourteen serve method FPM; reNumberDensity .. restitution and
+ *              particleShifting 0; maxParticleLoss 0.2; manageInterval 1; }
+ * (the last sixteen serve method FPM; reNumberDensity .. restitution and
  * maxCo serve MPS) */
 typedef struct case_meshless {
     char method[16];             /* MPS */
