@@ -297,28 +297,29 @@ void fpm_laplacian_row(const double *dx, const double *dy, int k, double h, mls_
                        const double *cy, const double *cxx, const double *cxy, const double *cyy, double eps,
                        double *lap)
 {
-    for (int t = 0; t < k; t++)
-        lap[t] = (cxx ? cxx[t] : 0) + (cyy ? cyy[t] : 0); /* Eq. 18: the MLS Laplacian */
-    if (eps == 0)
-        return;
     double sw = 0;
-    for (int t = 0; t < k; t++) {
-        double w, w1, wq, w2, r2 = dx[t] * dx[t] + dy[t] * dy[t];
-        mls_wfun_eval(wf, sqrt(r2) / h, &w, &w1, &wq, &w2);
-        sw += w * r2;
-    }
-    if (!(sw > 0))
-        return;
+    if (eps != 0)
+        for (int t = 0; t < k; t++) { /* lap holds the weights until the MLS Laplacian goes in */
+            double w1, wq, w2, r2 = dx[t] * dx[t] + dy[t] * dy[t];
+            mls_wfun_eval(wf, sqrt(r2) / h, &lap[t], &w1, &wq, &w2);
+            sw += lap[t] * r2;
+        }
+    int stab = eps != 0 && sw > 0;
     double csum = 0, mx = 0, my = 0, mxx = 0, mxy = 0, myy = 0;
-    for (int t = 0; t < k; t++) { /* the positive weights c_j; the particle itself (d = 0) gets none */
-        double w, w1, wq, w2, r2 = dx[t] * dx[t] + dy[t] * dy[t];
-        mls_wfun_eval(wf, sqrt(r2) / h, &w, &w1, &wq, &w2);
+    for (int t = 0; t < k; t++) {
+        double w = stab ? lap[t] : 0, r2 = dx[t] * dx[t] + dy[t] * dy[t];
+        lap[t] = (cxx ? cxx[t] : 0) + (cyy ? cyy[t] : 0); /* Eq. 18: the MLS Laplacian */
+        if (!stab)
+            continue;
+        /* the positive weights c_j; the particle itself (d = 0) gets none */
         double c = r2 > 0 ? 4 * w / sw : 0;
         lap[t] += eps * c;
         csum += c;
         mx += c * dx[t], my += c * dy[t];
         mxx += c * dx[t] * dx[t], mxy += c * dx[t] * dy[t], myy += c * dy[t] * dy[t];
     }
+    if (!stab)
+        return;
     for (int t = 0; t < k; t++) {
         double r = (t == 0 ? csum : 0) + mx * cx[t] + my * cy[t];
         if (cxx && cxy && cyy)

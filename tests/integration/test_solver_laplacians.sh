@@ -99,35 +99,31 @@ else
     echo "  FAIL foamToVTK"; fail=1
 fi
 echo "== bad settings"
-for kv in "reFactor 7" "laplacian SPH"; do
-    set -- $kv
-    b=$work/bad-$1
+# refused NAME PATTERN KEY VALUE [KEY VALUE ...]: the case with those UMPPM
+# entries set must stop with a FATAL ERROR matching PATTERN
+refused() {
+    local name=$1 pattern=$2 b=$work/bad-$1
+    shift 2
     mkdir -p "$b"
     cp -r "$q/system" "$q/constant" "$q/0" "$b/"
-    foamDictionary -entry "UMPPM/$1" -set "$2" "$b/system/fvSolution" > /dev/null
+    while [ $# -gt 0 ]; do
+        foamDictionary -entry "UMPPM/$1" -set "$2" "$b/system/fvSolution" > /dev/null
+        shift 2
+    done
     if (cd "$b" && "$UMPPMFOAM" > log 2>&1); then
-        echo "  FAIL UMPPM $1 $2 accepted"; fail=1
-    elif grep -q "FATAL ERROR: .*system/fvSolution.*$2" "$b/log"; then
-        echo "  ok   UMPPM $1 $2 refused: $(grep FATAL "$b/log")"
+        echo "  FAIL $name accepted"; fail=1
+    elif grep -q "FATAL ERROR: $pattern" "$b/log"; then
+        echo "  ok   $name refused: $(grep FATAL "$b/log")"
     else
-        echo "  FAIL UMPPM $1 $2: no error naming system/fvSolution"; tail -2 "$b/log"; fail=1
+        echo "  FAIL $name: no error naming the entry"; tail -2 "$b/log"; fail=1
     fi
-done
+}
+refused reFactor ".*system/fvSolution.*7" reFactor 7
+refused laplacian ".*system/fvSolution.*SPH" laplacian SPH
 # reFactor with a Laplacian that has no influence radius does nothing:
 # refused, naming the entry
 for m in CPM CPM4; do
-    b=$work/bad-reFactor-$m
-    mkdir -p "$b"
-    cp -r "$q/system" "$q/constant" "$q/0" "$b/"
-    foamDictionary -entry UMPPM/laplacian -set "$m" "$b/system/fvSolution" > /dev/null
-    foamDictionary -entry UMPPM/reFactor -set 2 "$b/system/fvSolution" > /dev/null
-    if (cd "$b" && "$UMPPMFOAM" > log 2>&1); then
-        echo "  FAIL laplacian $m with reFactor 2 accepted"; fail=1
-    elif grep -q "FATAL ERROR: system/fvSolution: UMPPM reFactor 2 .*laplacian $m has none" "$b/log"; then
-        echo "  ok   laplacian $m, reFactor 2 refused: $(grep FATAL "$b/log")"
-    else
-        echo "  FAIL laplacian $m, reFactor 2: no error naming the entry"; tail -2 "$b/log"; fail=1
-    fi
+    refused "reFactor-$m" "system/fvSolution: UMPPM reFactor 2 .*laplacian $m has none" laplacian "$m" reFactor 2
 done
 [ "$fail" = 0 ] || { echo "work dir kept: $work"; exit 1; }
 rm -rf "$work"
