@@ -20,6 +20,7 @@
  * depend on the number of threads.
  */
 #include "umppm/fpm.h"
+#include "umppm/coarse.h"
 #include "umppm/mps.h"
 #include "umppm/pnbr.h"
 #include "umppm/vor.h"
@@ -32,6 +33,7 @@
 
 #define FPM_SKIN 0.5 /* Verlet skin of the rows, in l0 */
 #define FPM_MAXROW 512
+#define FPM_AGG 3.0 /* side of the pressure solve's coarse aggregates, in l0 (coarse.h) */
 
 struct fpm {
     fpm_params P;
@@ -61,6 +63,7 @@ struct fpm {
     size_t acap;
     lsolve_krylov *kry;
     size_t kry_n;
+    coarse *coa;                /* the coarse level of the pressure solve */
     /* particle management */
     unsigned char *keep;        /* [kcap] */
     size_t kcap;
@@ -213,6 +216,7 @@ void fpm_free(fpm **pf)
     free(f->A.Ai);
     free(f->A.Ax);
     lsolve_krylov_free(&f->kry);
+    coarse_free(&f->coa);
     free(f->keep);
     free(f->mask);
     free(f->hx);
@@ -469,8 +473,10 @@ static ump_status matrix_reserve(fpm *f, size_t nrows, size_t nz, ump_err *err)
 /* The pressure system at the current classification: lap p = src_i on
  * the fluid particles inside (Eq. 24's form), dp/dn = flux_i on the wet
  * wall points (Eq. 25's form; i < nwall), p = pd_i (NULL: 0) on the
- * free-surface particles and dry wall points; BiCGSTAB with ILU(0) from
- * the last pressure. src and flux are indexed by particle [n]. */
+ * free-surface particles and dry wall points; BiCGSTAB with ILU(0) and
+ * the coarse level of aggregates (coarse.h) from the last pressure. src and flux are indexed by particle [n]. */
+static void coarse_add_fn(void *ctx, const double *r, double *z) { coarse_add(ctx, r, z); }
+
 static ump_status solve_ppe(fpm *f, const double *src, const double *flux, const double *pd, fpm_stats *st,
                             ump_err *err)
 {
@@ -509,9 +515,14 @@ static ump_status solve_ppe(fpm *f, const double *src, const double *flux, const
         size_t i = f->unk_part[r];
         ump_idx k = f->rp[r];
         int wall = f->kind[i] == FPM_WALL;
-        /* a Laplacian row, or a normal-derivative row scaled by -l0 (one
-         * sign on the diagonal for ILU(0)) */
-        double nx = wall ? f->wnx[i] : 0, ny = wall ? f->wny[i] : 0, sc = wall ? -l0 : 1, b = wall ? flux[i] : src[i];
+        /* a Laplacian row, or a normal-derivative row scaled by -1/l0: one
+         * sign on the diagonal for ILU(0), and entries of the Laplacian
+         * rows' size, 1/l0^2. Scaled by -l0 instead, the wall rows' b
+         * (rho g.n l0) was so small against the Laplacian rows' A p that the
+         * relative residual 1e-8 could not be reached (measured, 10^4
+         * particles at rest: 5000 iterations, stuck at 5.5e-8) */
+        double nx = wall ? f->wnx[i] : 0, ny = wall ? f->wny[i] : 0, sc = wall ? -1.0 / l0 : 1;
+        double b = wall ? flux[i] : src[i];
         f->ci[k] = (ump_idx)r;
         f->av[k++] = wall ? sc * (nx * f->sx[i] + ny * f->sy[i]) : f->sp[i];
         for (size_t q = R->off[i]; q < R->off[i + 1]; q++) {
@@ -538,8 +549,17 @@ static ump_status solve_ppe(fpm *f, const double *src, const double *flux, const
         UMP_CALL(lsolve_krylov_create((ump_idx)kn, &f->kry, err));
         f->kry_n = kn;
     }
-    ump_status rc = lsolve_bicgstab(f->kry, &f->A, LSOLVE_PC_ILU0, f->b, f->x, f->P.p_tol, f->P.maxit, &st->pres,
-                                    err);
+    /* two-level: ILU(0) plus the coarse level of aggregates of side 3 l0
+     * (coarse.h), as MPS's; the coarse matrix is not symmetric: KLU */
+    int cok = 0;
+    if (!f->coa)
+        UMP_CALL(coarse_create(&f->coa, err));
+    UMP_CALL(coarse_build(f->coa, nu, f->s->x, f->s->y, f->unk_part, FPM_AGG * l0, f->rp, f->ci, f->av, LSOLVE_KLU,
+                          &cok, err));
+    ump_status rc = cok ? lsolve_bicgstab_pc(f->kry, &f->A, LSOLVE_PC_ILU0, coarse_add_fn, f->coa, f->b, f->x,
+                                             f->P.p_tol, f->P.maxit, &st->pres, err)
+                        : lsolve_bicgstab(f->kry, &f->A, LSOLVE_PC_ILU0, f->b, f->x, f->P.p_tol, f->P.maxit,
+                                          &st->pres, err);
     if (rc != UMP_OK)
         return rc; /* lsolve names it */
     if (st->pres.converged < 0)
@@ -902,24 +922,15 @@ ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char *
         }
         vor_hole *H = NULL;
         size_t nh = 0;
-        UMP_CALL(vor_holes(f->hx, f->hy, m, f->mask, mg->r_hole * l0, &H, &nh, err));
+        /* the largest holes whose centre lies inside their triangle
+         * (barycentric >= -0.05): not across a wall (vor.h) */
+        UMP_CALL(vor_holes_inside(f->hx, f->hy, m, f->mask, mg->r_hole * l0, 0.05, &H, &nh, err));
         for (size_t k = 0; k < m; k++)
             f->mask[k] = 0; /* now: vertex used by an insertion of this call */
         ump_status rc = UMP_OK;
         for (size_t h = 0; h < nh && rc == UMP_OK; h++) {
             const vor_hole *o = &H[h];
             if (f->mask[o->v[0]] || f->mask[o->v[1]] || f->mask[o->v[2]])
-                continue;
-            /* inside its triangle (barycentric >= -0.05): not across a wall */
-            double ax = f->hx[o->v[0]], ay = f->hy[o->v[0]], bx = f->hx[o->v[1]], by = f->hy[o->v[1]];
-            double cx = f->hx[o->v[2]], cy = f->hy[o->v[2]];
-            double det = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
-            if (det == 0)
-                continue;
-            double l1 = ((bx - o->x) * (cy - o->y) - (cx - o->x) * (by - o->y)) / det;
-            double l2 = ((cx - o->x) * (ay - o->y) - (ax - o->x) * (cy - o->y)) / det;
-            double l3 = 1 - l1 - l2;
-            if (l1 < -0.05 || l2 < -0.05 || l3 < -0.05)
                 continue;
             /* interpolate from a fluid vertex's row */
             size_t c0 = f->hmap[o->v[0]];

@@ -41,6 +41,8 @@ struct lsolve_krylov {
     size_t cap;
     ump_idx pc_n;                             /* order the preconditioner was built for, -1 none */
     int pc_kind;                              /* its lsolve_pc */
+    lsolve_pc_fn add;                         /* of this solve: adds its correction (lsolve_bicgstab_pc) */
+    void *add_ctx;
 };
 
 void lsolve_krylov_free(lsolve_krylov **pk)
@@ -194,7 +196,18 @@ static ump_status bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, 
 ump_status lsolve_bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, const double *b,
                            double *x, double tol, int maxit, lsolve_stats *st, ump_err *err)
 {
+    k->add = NULL;
     return bicgstab(k, A, pc, 1, b, x, tol, maxit, st, err);
+}
+
+ump_status lsolve_bicgstab_pc(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, lsolve_pc_fn add, void *ctx,
+                              const double *b, double *x, double tol, int maxit, lsolve_stats *st, ump_err *err)
+{
+    k->add = add;
+    k->add_ctx = ctx;
+    ump_status rc = bicgstab(k, A, pc, 1, b, x, tol, maxit, st, err);
+    k->add = NULL;
+    return rc;
 }
 
 ump_status lsolve_bicgstab_again(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, const double *b,
@@ -202,6 +215,7 @@ ump_status lsolve_bicgstab_again(lsolve_krylov *k, const lsolve_mat *A, lsolve_p
 {
     UMP_CHECK(k->pc_n == A->n && k->pc_kind == (int)pc, err, UMP_ERR_INPUT,
               "BiCGSTAB: no preconditioner of this kind was built for a matrix of order %d", (int)A->n);
+    k->add = NULL;
     return bicgstab(k, A, pc, 0, b, x, tol, maxit, st, err);
 }
 
@@ -263,6 +277,8 @@ static ump_status bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, 
                     p[i] = r[i] + beta * (p[i] - omega * v[i]); /* p <- r + b (p - w v) */
             }
             apply_pc(k, A, pc, p, ph);      /* ph <- M^-1 p */
+            if (k->add)
+                k->add(k->add_ctx, p, ph);
             lsolve_mat_mult(A, ph, v);      /* v <- A ph */
             double sigma = dot(n, rh, v);
             if (sigma == 0.0 || !isfinite(sigma)) {
@@ -282,6 +298,8 @@ static ump_status bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, 
                 break;
             }
             apply_pc(k, A, pc, s, sh);      /* sh <- M^-1 s */
+            if (k->add)
+                k->add(k->add_ctx, s, sh);
             lsolve_mat_mult(A, sh, t);      /* t <- A sh */
             double tt = dot(n, t, t);
             omega = tt > 0.0 ? dot(n, t, s) / tt : 0.0; /* w <- (t, s) / (t, t) */

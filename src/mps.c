@@ -20,6 +20,7 @@
  * number of threads), with the offset and the distance of each.
  */
 #include "umppm/mps.h"
+#include "umppm/coarse.h"
 #include "umppm/pnbr.h"
 
 #include <math.h>
@@ -50,15 +51,9 @@ struct mps {
     double *av, *b, *x;
     size_t mcap_rows, mcap_nz;
     lsolve_rows *kry;
-    /* two-level preconditioner of the PPE (see coarse_build) */
-    ump_idx *agg;              /* [cap] aggregate of each unknown */
-    long *binmap;              /* [bcap] bin of the coarse grid -> aggregate */
-    size_t bcap, nagg;
-    lsolve_trip trip;
-    lsolve_mat *Ac;
-    lsolve *fac;
-    double *dinv, *rc, *zc;    /* [cap], [ccap], [ccap] */
-    size_t ccap;
+    /* two-level preconditioner of the PPE (see pressure(); coarse.h) */
+    coarse *cl;                /* the coarse level */
+    double *dinv;              /* [cap] Jacobi */
     ump_idx trip_rows;         /* order of the fine system of coarse_apply */
     int coarse_ok;             /* the coarse factor of this step is usable */
 };
@@ -112,7 +107,6 @@ static ump_status reserve(mps *m, ump_err *err)
     GROW_TO(m->gy, nc);
     GROW_TO(m->div, nc);
     GROW_TO(m->tmp, nc);
-    GROW_TO(m->agg, nc);
     GROW_TO(m->dinv, nc);
     GROW_TO(m->surf, nc);
     GROW_TO(m->unk, nc);
@@ -143,7 +137,8 @@ ump_status mps_create(const mps_params *prm, part_set *s, size_t nsolid, const u
     m->s = s;
     m->ns = nsolid;
     ump_status rc;
-    if ((rc = reserve(m, err)) != UMP_OK || (rc = lsolve_rows_create(&m->kry, err)) != UMP_OK) {
+    if ((rc = reserve(m, err)) != UMP_OK || (rc = lsolve_rows_create(&m->kry, err)) != UMP_OK ||
+        (rc = coarse_create(&m->cl, err)) != UMP_OK) {
         mps_free(&m);
         return rc;
     }
@@ -179,14 +174,8 @@ void mps_free(mps **pm)
     free(m->gy);
     free(m->div);
     free(m->tmp);
-    free(m->agg);
     free(m->dinv);
-    free(m->binmap);
-    free(m->rc);
-    free(m->zc);
-    lsolve_trip_free(&m->trip);
-    lsolve_mat_free(&m->Ac);
-    lsolve_free(&m->fac);
+    coarse_free(&m->cl);
     free(m->surf);
     free(m->unk);
     free(m->unk_part);
@@ -483,70 +472,12 @@ static void density(mps *m)
  * cost per particle-step would grow with N. The additive two-level
  * preconditioner M^-1 = D^-1 + P (P^T A P)^-1 P^T, P the piecewise-constant
  * prolongation from aggregates (the unknowns in squares of side 3 l0, about
- * nine particles each), bounds the condition number by the aggregate size
- * instead of the domain size: the iterations stop growing with N. The
- * coarse matrix (about N/9 unknowns, the Galerkin product) is factorized by
- * CHOLMOD every step (its pattern follows the particles). Symmetric positive
- * definite, so CG keeps its guarantees; if the coarse factorization fails,
- * the step falls back to Jacobi alone (only the speed changes). */
-static ump_status coarse_build(mps *m, size_t nu, ump_err *err)
-{
-    const part_set *s = m->s;
-    m->coarse_ok = 0;
-    if (nu < 64)
-        return UMP_OK;
-    double H = MPS_AGG * m->P.l0, x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
-    for (size_t k = 0; k < nu; k++) {
-        size_t i = m->unk_part[k];
-        x0 = fmin(x0, s->x[i]), x1 = fmax(x1, s->x[i]);
-        y0 = fmin(y0, s->y[i]), y1 = fmax(y1, s->y[i]);
-    }
-    long nbx = (long)floor((x1 - x0) / H) + 1, nby = (long)floor((y1 - y0) / H) + 1;
-    if ((double)nbx * (double)nby > 4.0 * (double)nu + 1024)
-        return UMP_OK; /* scattered liquid: not worth it */
-    size_t nb = (size_t)nbx * (size_t)nby;
-    if (nb > m->bcap) {
-        size_t nc = nb + nb / 2 + 16;
-        GROW_TO(m->binmap, nc);
-        m->bcap = nc;
-    }
-    for (size_t b = 0; b < nb; b++)
-        m->binmap[b] = -1;
-    size_t na = 0;
-    for (size_t k = 0; k < nu; k++) { /* aggregates numbered by first unknown: deterministic */
-        size_t i = m->unk_part[k];
-        long bx = (long)floor((s->x[i] - x0) / H), by = (long)floor((s->y[i] - y0) / H);
-        size_t b = (size_t)(by * nbx + bx);
-        if (m->binmap[b] < 0)
-            m->binmap[b] = (long)na++;
-        m->agg[k] = (ump_idx)m->binmap[b];
-    }
-    m->nagg = na;
-    if (na + 1 > m->ccap) {
-        size_t nc = na + na / 2 + 16;
-        GROW_TO(m->rc, nc);
-        GROW_TO(m->zc, nc);
-        m->ccap = nc;
-    }
-    /* P^T A P (whole: lsolve_factor checks the symmetry), and D^-1 */
-    if (!m->trip.Ti)
-        UMP_CALL(lsolve_trip_init(&m->trip, (ump_idx)na, (size_t)m->rp[nu], err));
-    lsolve_trip_clear(&m->trip);
-    m->trip.n = (ump_idx)na;
-    for (size_t k = 0; k < nu; k++)
-        for (ump_idx q = m->rp[k]; q < m->rp[k + 1]; q++) {
-            ump_idx a = m->agg[k], b = m->agg[m->ci[q]];
-            if (m->ci[q] == (ump_idx)k)
-                m->dinv[k] = 1.0 / m->av[q];
-            UMP_CALL(lsolve_trip_add(&m->trip, a, b, m->av[q], err));
-        }
-    lsolve_mat_free(&m->Ac);
-    lsolve_free(&m->fac);
-    UMP_CALL(lsolve_trip_to_mat(&m->trip, &m->Ac, err));
-    ump_err ignored;
-    m->coarse_ok = lsolve_factor(m->Ac, LSOLVE_CHOLMOD, &m->fac, &ignored) == UMP_OK;
-    return UMP_OK;
-}
+ * nine particles each; coarse.h), bounds the condition number by the
+ * aggregate size instead of the domain size: the iterations stop growing
+ * with N. The coarse matrix is factorized by CHOLMOD every step (its
+ * pattern follows the particles). Symmetric positive definite, so CG keeps
+ * its guarantees; if the coarse factorization fails, the step falls back to
+ * Jacobi alone (only the speed changes). */
 
 /* z = D^-1 r + P Ac^-1 P^T r */
 static void coarse_apply(void *ctx, const double *r, double *z)
@@ -556,15 +487,7 @@ static void coarse_apply(void *ctx, const double *r, double *z)
 #pragma omp parallel for schedule(static)
     for (size_t k = 0; k < nu; k++)
         z[k] = m->dinv[k] * r[k];
-    memset(m->rc, 0, sizeof *m->rc * m->nagg);
-    for (size_t k = 0; k < nu; k++)
-        m->rc[m->agg[k]] += r[k];
-    ump_err ignored;
-    if (lsolve_solve(m->fac, m->rc, m->zc, &ignored) != UMP_OK)
-        return;
-#pragma omp parallel for schedule(static)
-    for (size_t k = 0; k < nu; k++)
-        z[k] += m->zc[m->agg[k]];
+    coarse_add(m->cl, r, z);
 }
 
 /* Pressure Poisson equation, Eqs. 16-18, for fluid and wall particles that
@@ -604,7 +527,12 @@ static ump_status pressure(mps *m, double dt, mps_stats *st, ump_err *err)
     }
     lsolve_csr A = {(ump_idx)nu, m->rp, m->ci, m->av};
     UMP_CALL(lsolve_rows_setup(m->kry, &A, LSOLVE_PC_JACOBI, err));
-    UMP_CALL(coarse_build(m, nu, err));
+    for (size_t k = 0; k < nu; k++)
+        for (ump_idx q = m->rp[k]; q < m->rp[k + 1]; q++)
+            if (m->ci[q] == (ump_idx)k)
+                m->dinv[k] = 1.0 / m->av[q];
+    UMP_CALL(coarse_build(m->cl, nu, s->x, s->y, m->unk_part, MPS_AGG * P->l0, m->rp, m->ci, m->av, LSOLVE_CHOLMOD,
+                          &m->coarse_ok, err));
     m->trip_rows = (ump_idx)nu;
     UMP_CALL(lsolve_rows_cg_pc(m->kry, &A, m->b, m->x, P->p_tol, P->maxit, m->coarse_ok ? coarse_apply : NULL, m,
                                &st->pres, err));

@@ -144,7 +144,7 @@ static int facet_triple(qhT *qh, facetT *facet, const vor_cloud *cl, size_t t[3]
     return nv == 3; /* Qt: every facet is a triangle */
 }
 
-/* Collect the qualifying circles of the finished triangulation. */
+/* Collect the qualifying circles of the finished triangulation, unsorted. */
 static ump_status collect(qhT *qh, const vor_cloud *cl, double rmin, vor_hole **holes, size_t *nholes,
                           ump_err *err)
 {
@@ -165,11 +165,20 @@ static ump_status collect(qhT *qh, const vor_cloud *cl, double rmin, vor_hole **
         free(h);
         return UMP_OK;
     }
-    qsort(h, m, sizeof *h, hole_cmp);
-    vor_hole *hs = ump_realloc_array(h, m, sizeof *h);
-    *holes = hs ? hs : h; /* shrinking cannot really fail; keep h if it does */
+    *holes = h;
     *nholes = m;
     return UMP_OK;
+}
+
+/* Sort the list (hole_cmp) and give back its unused tail. */
+static void sort_holes(vor_hole **holes, size_t m)
+{
+    if (m == 0)
+        return;
+    qsort(*holes, m, sizeof **holes, hole_cmp);
+    vor_hole *hs = ump_realloc_array(*holes, m, sizeof **holes);
+    if (hs)
+        *holes = hs; /* shrinking cannot really fail; keep the old block if it does */
 }
 
 /* qhull's first error line ("QH6xxx ..."), else its first line, from buf. */
@@ -239,8 +248,9 @@ static ump_status cloud_shape(vor_cloud *c, int *flat, ump_err *err)
     return UMP_OK;
 }
 
-ump_status vor_holes(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
-                     vor_hole **holes, size_t *nholes, ump_err *err)
+/* The qualifying circles of the whole cloud, unsorted (vor_holes). */
+static ump_status all_holes(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
+                            vor_hole **holes, size_t *nholes, ump_err *err)
 {
     *holes = NULL;
     *nholes = 0;
@@ -292,5 +302,238 @@ ump_status vor_holes(const double *x, const double *y, size_t n, const unsigned 
                       "vor: qhull failed (exit code %d) on %zu points: %.*s", code, n, len, msg);
     }
     free(ebuf);
+    return st;
+}
+
+ump_status vor_holes(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
+                     vor_hole **holes, size_t *nholes, ump_err *err)
+{
+    UMP_CALL(all_holes(x, y, n, mask, rmin, holes, nholes, err));
+    sort_holes(holes, *nholes);
+    return UMP_OK;
+}
+
+/* ---- vor_holes_inside: the Delaunay triangulation of the candidates only ---- */
+
+/* Points binned on a grid of square cells of side g (counting sort). */
+typedef struct vor_grid {
+    double x0, y0, g;
+    long nx, ny;
+    size_t *start; /* [nx ny + 1] */
+    size_t *idx;   /* [n] point numbers, by cell */
+} vor_grid;
+
+/* 0: too many cells for the points (a scattered cloud), nothing allocated. */
+static ump_status grid_build(vor_grid *G, const double *x, const double *y, size_t n, double g, int *ok,
+                             ump_err *err)
+{
+    *ok = 0;
+    double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
+    for (size_t i = 0; i < n; i++) {
+        x0 = fmin(x0, x[i]), x1 = fmax(x1, x[i]);
+        y0 = fmin(y0, y[i]), y1 = fmax(y1, y[i]);
+    }
+    double cx = floor((x1 - x0) / g) + 1, cy = floor((y1 - y0) / g) + 1;
+    if (!(cx * cy <= 4.0 * (double)n + 4096))
+        return UMP_OK;
+    G->x0 = x0, G->y0 = y0, G->g = g, G->nx = (long)cx, G->ny = (long)cy;
+    size_t nc = (size_t)G->nx * (size_t)G->ny;
+    G->start = ump_alloc_array(nc + 1, sizeof *G->start);
+    G->idx = ump_alloc_array(n ? n : 1, sizeof *G->idx);
+    if (!G->start || !G->idx) {
+        free(G->start);
+        free(G->idx);
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "vor: out of memory for a grid of %zu cells", nc);
+    }
+    memset(G->start, 0, sizeof *G->start * (nc + 1));
+    for (size_t i = 0; i < n; i++) {
+        long bx = (long)((x[i] - x0) / g), by = (long)((y[i] - y0) / g);
+        G->start[(size_t)(by * G->nx + bx) + 1]++;
+    }
+    for (size_t c = 0; c < nc; c++)
+        G->start[c + 1] += G->start[c];
+    for (size_t i = 0; i < n; i++) { /* in increasing i within a cell */
+        long bx = (long)((x[i] - x0) / g), by = (long)((y[i] - y0) / g);
+        size_t c = (size_t)(by * G->nx + bx);
+        G->idx[G->start[c]++] = i;
+    }
+    for (size_t c = nc; c > 0; c--)
+        G->start[c] = G->start[c - 1];
+    G->start[0] = 0;
+    *ok = 1;
+    return UMP_OK;
+}
+
+/* The cell range [lo, hi] covering [a - r, a + r] along one axis. */
+static void grid_span(double a, double r, double a0, double g, long ncell, long *lo, long *hi)
+{
+    double l = floor((a - r - a0) / g), h = floor((a + r - a0) / g);
+    *lo = l < 0 ? 0 : l >= (double)ncell ? ncell : (long)l;
+    *hi = h < 0 ? -1 : h >= (double)ncell ? ncell - 1 : (long)h;
+}
+
+/* Whether point i can be a vertex of an empty circle of radius > rmin:
+ * some open disk of radius rmin with i on its boundary (centre i + rmin e)
+ * holds no other point. A point j at distance d < 2 rmin from i lies in
+ * that disk for the directions e within acos(d / 2 rmin) of its own
+ * direction, an open arc; i qualifies when the arcs of its neighbours do
+ * not cover the whole circle, i.e. when the end of some arc lies in no
+ * arc (or there is no arc). The arcs are narrowed by a relative 1e-9, so a
+ * rounding error can only make a point qualify. */
+static int can_be_vertex(const vor_grid *G, const double *x, const double *y, size_t i, double rmin)
+{
+    enum { MAXARC = 256 };
+    double th[MAXARC], al[MAXARC];
+    int k = 0;
+    long cx0, cx1, cy0, cy1;
+    grid_span(x[i], 2 * rmin, G->x0, G->g, G->nx, &cx0, &cx1);
+    grid_span(y[i], 2 * rmin, G->y0, G->g, G->ny, &cy0, &cy1);
+    for (long by = cy0; by <= cy1; by++)
+        for (long bx = cx0; bx <= cx1; bx++) {
+            size_t c = (size_t)(by * G->nx + bx);
+            for (size_t q = G->start[c]; q < G->start[c + 1]; q++) {
+                size_t j = G->idx[q];
+                double dx = x[j] - x[i], dy = y[j] - y[i], d = hypot(dx, dy);
+                if (j == i || d == 0 || !(d < 2 * rmin))
+                    continue;
+                if (k == MAXARC)
+                    return 1; /* a crowd: let qhull decide */
+                th[k] = atan2(dy, dx);
+                al[k] = acos(d / (2 * rmin)) * (1 - 1e-9);
+                k++;
+            }
+        }
+    const double pi = 3.14159265358979323846;
+    for (int a = 0; a < k; a++) {
+        double e = th[a] + al[a]; /* the end of arc a */
+        int in = 0;
+        for (int b = 0; b < k && !in; b++) { /* not its own: e is its edge, up to rounding */
+            double dth = remainder(e - th[b], 2 * pi);
+            in = b != a && fabs(dth) < al[b];
+        }
+        if (!in)
+            return 1;
+    }
+    return k == 0;
+}
+
+/* Whether the open disk (h->x, h->y, h->r) holds a point other than its
+ * triangle's three (to a relative 1e-10 of r^2: cocircular points, a
+ * lattice's, are on the circle, not in it). The centre's cell first: a
+ * circle spanning the liquid between far-apart candidates fails there. */
+static int disk_holds_point(const vor_grid *G, const double *x, const double *y, const vor_hole *h)
+{
+    double r2 = h->r * h->r * (1 - 1e-10);
+    long cx0, cx1, cy0, cy1;
+    grid_span(h->x, 0, G->x0, G->g, G->nx, &cx0, &cx1);
+    grid_span(h->y, 0, G->y0, G->g, G->ny, &cy0, &cy1);
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 1) {
+            grid_span(h->x, h->r, G->x0, G->g, G->nx, &cx0, &cx1);
+            grid_span(h->y, h->r, G->y0, G->g, G->ny, &cy0, &cy1);
+        }
+        for (long by = cy0; by <= cy1; by++)
+            for (long bx = cx0; bx <= cx1; bx++) {
+                size_t c = (size_t)(by * G->nx + bx);
+                for (size_t q = G->start[c]; q < G->start[c + 1]; q++) {
+                    size_t j = G->idx[q];
+                    if (j == h->v[0] || j == h->v[1] || j == h->v[2])
+                        continue;
+                    double dx = x[j] - h->x, dy = y[j] - h->y;
+                    if (dx * dx + dy * dy < r2)
+                        return 1;
+                }
+            }
+    }
+    return 0;
+}
+
+/* The circle's centre inside its triangle: barycentric coordinates >=
+ * -inside, the vertices in ascending index order. */
+static int centre_inside(const double *x, const double *y, const vor_hole *o, double inside)
+{
+    double ax = x[o->v[0]], ay = y[o->v[0]], bx = x[o->v[1]], by = y[o->v[1]], cx = x[o->v[2]], cy = y[o->v[2]];
+    double det = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
+    if (det == 0)
+        return 0;
+    double l1 = ((bx - o->x) * (cy - o->y) - (cx - o->x) * (by - o->y)) / det;
+    double l2 = ((cx - o->x) * (ay - o->y) - (ax - o->x) * (cy - o->y)) / det;
+    double l3 = 1 - l1 - l2;
+    return l1 >= -inside && l2 >= -inside && l3 >= -inside;
+}
+
+ump_status vor_holes_inside(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
+                            double inside, vor_hole **holes, size_t *nholes, ump_err *err)
+{
+    *holes = NULL;
+    *nholes = 0;
+    if (n < 3)
+        return UMP_OK;
+    UMP_CHECK(rmin > 0 && isfinite(rmin) && inside >= 0, err, UMP_ERR_INPUT,
+              "vor: hole radius %g, inside %g", rmin, inside);
+    for (size_t i = 0; i < n; i++)
+        UMP_CHECK(isfinite(x[i]) && isfinite(y[i]), err, UMP_ERR_INPUT, "vor: point %zu (%g, %g) is not finite", i,
+                  x[i], y[i]);
+    vor_grid G = {0};
+    int ok;
+    UMP_CALL(grid_build(&G, x, y, n, 2 * rmin, &ok, err));
+    vor_hole *h = NULL;
+    size_t m = 0;
+    if (!ok) {
+        /* scattered: the whole cloud, then the same filter */
+        UMP_CALL(all_holes(x, y, n, mask, rmin, &h, &m, err));
+        size_t k = 0;
+        for (size_t q = 0; q < m; q++)
+            if (centre_inside(x, y, &h[q], inside))
+                h[k++] = h[q];
+        if (k == 0)
+            free(h);
+        else
+            sort_holes(&h, k);
+        *holes = k ? h : NULL;
+        *nholes = k;
+        return UMP_OK;
+    }
+    /* the candidates, kept by mask */
+    size_t *sub = ump_alloc_array(n, sizeof *sub);
+    double *sx = ump_alloc_array(n, sizeof *sx), *sy = ump_alloc_array(n, sizeof *sy);
+    ump_status st = UMP_OK;
+    if (!sub || !sx || !sy) {
+        st = UMP_FAIL(err, UMP_ERR_NOMEM, "vor: out of memory for %zu points", n);
+        goto out;
+    }
+    size_t ns = 0;
+    for (size_t i = 0; i < n; i++)
+        if ((!mask || mask[i]) && can_be_vertex(&G, x, y, i, rmin)) {
+            sub[ns] = i;
+            sx[ns] = x[i];
+            sy[ns] = y[i];
+            ns++;
+        }
+    st = all_holes(sx, sy, ns, NULL, rmin, &h, &m, err);
+    if (st != UMP_OK)
+        goto out;
+    size_t k = 0;
+    for (size_t q = 0; q < m; q++) {
+        vor_hole o = h[q];
+        for (int t = 0; t < 3; t++)
+            o.v[t] = sub[o.v[t]]; /* ascending still: sub is increasing */
+        if (centre_inside(x, y, &o, inside) && !disk_holds_point(&G, x, y, &o))
+            h[k++] = o;
+    }
+    if (k == 0) {
+        free(h);
+        h = NULL;
+    } else {
+        sort_holes(&h, k);
+    }
+    *holes = h;
+    *nholes = k;
+out:
+    free(sub);
+    free(sx);
+    free(sy);
+    free(G.start);
+    free(G.idx);
     return st;
 }

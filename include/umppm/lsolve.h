@@ -115,6 +115,16 @@ void lsolve_krylov_free(lsolve_krylov **k);
 ump_status lsolve_bicgstab(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, const double *b,
                            double *x, double tol, int maxit, lsolve_stats *st, ump_err *err);
 
+/* Preconditioner callback: z from r over the order of the solve (see the
+ * functions taking one for whether it replaces or adds to z). */
+typedef void (*lsolve_pc_fn)(void *ctx, const double *r, double *z);
+
+/* As lsolve_bicgstab with a two-level preconditioner: M^-1 r = (the one
+ * of pc) r, then add(ctx, r, z) adds its correction to that z (e.g. a
+ * coarse level, coarse.h). */
+ump_status lsolve_bicgstab_pc(lsolve_krylov *k, const lsolve_mat *A, lsolve_pc pc, lsolve_pc_fn add, void *ctx,
+                              const double *b, double *x, double tol, int maxit, lsolve_stats *st, ump_err *err);
+
 /* As lsolve_bicgstab for the same matrix values as the previous call (a
  * second right-hand side, e.g. v after u): the preconditioner built then is
  * reused instead of being recomputed. */
@@ -175,11 +185,10 @@ ump_status lsolve_rows_bicgstab(lsolve_rows *k, const lsolve_csr *A, int nrhs, c
  * is not positive (A not definite) or not finite. */
 ump_status lsolve_rows_cg(lsolve_rows *k, const lsolve_csr *A, const double *b, double *x, double tol, int maxit,
                           lsolve_stats *st, ump_err *err);
-/* A symmetric positive definite preconditioner given by the caller:
- * z = M^-1 r (r, z of the order of A; r must not be changed). */
-typedef void (*lsolve_pc_fn)(void *ctx, const double *r, double *z);
-/* lsolve_rows_cg with the preconditioner fn(ctx, ...) (NULL: the one of
- * lsolve_rows_setup, which must still have been called for A's order). */
+/* lsolve_rows_cg with the preconditioner fn(ctx, r, z): z = M^-1 r, M
+ * symmetric positive definite, given by the caller (r, z of the order of A;
+ * r must not be changed). NULL: the one of lsolve_rows_setup, which must
+ * still have been called for A's order. */
 ump_status lsolve_rows_cg_pc(lsolve_rows *k, const lsolve_csr *A, const double *b, double *x, double tol, int maxit,
                              lsolve_pc_fn fn, void *ctx, lsolve_stats *st, ump_err *err);
 

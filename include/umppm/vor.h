@@ -53,4 +53,20 @@ typedef struct vor_hole {
 ump_status vor_holes(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
                      vor_hole **holes, size_t *nholes, ump_err *err);
 
+/* The holes of vor_holes worth filling -- circumradius > rmin > 0, all
+ * three vertices kept by mask, and the centre inside its triangle
+ * (barycentric coordinates >= -inside, inside >= 0, the vertices in
+ * ascending index order) -- in the same order, without triangulating the
+ * whole cloud. A vertex of an empty circle of radius > rmin has an empty
+ * open disk of radius rmin on its boundary; only the points that have one
+ * (by the arcs their neighbours within 2 rmin block; a point of a lattice
+ * has none) go to qhull, and each circle qhull finds among them is kept if
+ * no point of the whole cloud lies inside it. So the result is vor_holes'
+ * filtered, up to the split of cocircular points into triangles (the same
+ * circles) and points inside a circle by less than 1e-10 r^2. A cloud
+ * scattered over more than 4 n + 4096 grid cells of side 2 rmin is
+ * triangulated whole. Errors as vor_holes', and a bad rmin or inside. */
+ump_status vor_holes_inside(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
+                            double inside, vor_hole **holes, size_t *nholes, ump_err *err);
+
 #endif

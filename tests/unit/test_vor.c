@@ -4,7 +4,10 @@
  * sqrt(2)/2), the mask removing that hole, random clouds checked against a
  * brute-force emptiness test and the triangle count of a triangulation,
  * independence of the input order, degenerate input (n < 3, collinear,
- * coincident, non-finite), concurrent calls, and silence of qhull.
+ * coincident, non-finite), concurrent calls, and silence of qhull;
+ * vor_holes_inside (the candidates only) against vor_holes filtered by the
+ * same centre-inside test on lattices, random and jittered clouds, masks
+ * and a scattered cloud.
  */
 #include "testutil.h"
 #include "umppm/ump.h"
@@ -447,6 +450,108 @@ static void test_silent(void **state)
     assert_int_equal(st.st_size, 0);
 }
 
+
+/* ---- vor_holes_inside against vor_holes ------------------------------- */
+
+/* The centre inside the triangle, as vor_holes_inside's filter is stated. */
+static int inside_tri(const double *x, const double *y, const vor_hole *o, double tol)
+{
+    double ax = x[o->v[0]], ay = y[o->v[0]], bx = x[o->v[1]], by = y[o->v[1]], cx = x[o->v[2]], cy = y[o->v[2]];
+    double det = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay);
+    if (det == 0)
+        return 0;
+    double l1 = ((bx - o->x) * (cy - o->y) - (cx - o->x) * (by - o->y)) / det;
+    double l2 = ((cx - o->x) * (ay - o->y) - (ax - o->x) * (cy - o->y)) / det;
+    return l1 >= -tol && l2 >= -tol && 1 - l1 - l2 >= -tol;
+}
+
+static int cmp_circle(const void *pa, const void *pb)
+{
+    const vor_hole *a = pa, *b = pb;
+    if (a->r != b->r)
+        return a->r < b->r ? -1 : 1;
+    if (a->x != b->x)
+        return a->x < b->x ? -1 : 1;
+    return (a->y > b->y) - (a->y < b->y);
+}
+
+/* vor_holes_inside gives vor_holes' holes with the centre inside: the same
+ * list (triples too, unless cocircular), *nfull the count. */
+static size_t same_as_full(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
+                           int cocircular)
+{
+    size_t nf, nh;
+    vor_hole *f = holes_ok(x, y, n, mask, rmin, &nf), *h = NULL;
+    size_t k = 0;
+    for (size_t q = 0; q < nf; q++)
+        if (inside_tri(x, y, &f[q], 0.05))
+            f[k++] = f[q];
+    ump_err err;
+    if (vor_holes_inside(x, y, n, mask, rmin, 0.05, &h, &nh, &err) != UMP_OK)
+        fail_msg("%s", err.msg);
+    assert_int_equal(nh, k);
+    check_shape(x, y, h, nh);
+    if (cocircular) {
+        qsort(f, k, sizeof *f, cmp_circle);
+        qsort(h, nh, sizeof *h, cmp_circle);
+    }
+    for (size_t q = 0; q < k; q++) {
+        assert_true(h[q].x == f[q].x && h[q].y == f[q].y && h[q].r == f[q].r);
+        if (!cocircular)
+            assert_memory_equal(h[q].v, f[q].v, sizeof f[q].v);
+    }
+    free(f);
+    free(h);
+    return k;
+}
+
+static void test_inside_matches(void **state)
+{
+    (void)state;
+    enum { M = 40, N = 2000 }; /* the random clouds' size; lattices of M x M */
+    static double x[N], y[N];
+    static unsigned char mask[N];
+    static long idx[NX][NY];
+    /* a lattice without one point: the hole of radius 1 (4 cocircular points) */
+    size_t n = lattice(x, y, idx);
+    assert_int_equal(same_as_full(x, y, n, NULL, 0.9, 1), 2);
+    /* random clouds: the largest empty circles */
+    for (uint64_t seed = 1; seed <= 4; seed++) {
+        random_cloud(x, y, 2000, seed);
+        size_t k = same_as_full(x, y, 2000, NULL, 1.0 / sqrt(2000.0), 0);
+        assert_true(k > 20);
+    }
+    /* jittered lattices with points taken out, with and without a mask */
+    for (uint64_t seed = 1; seed <= 4; seed++) {
+        tu_rng_seed(seed + 100);
+        n = 0;
+        for (int j = 0; j < M; j++)
+            for (int i = 0; i < M; i++) {
+                if (tu_rnd() < 0.03)
+                    continue;
+                x[n] = i + 0.6 * (tu_rnd() - 0.5);
+                y[n] = j + 0.6 * (tu_rnd() - 0.5);
+                mask[n] = tu_rnd() < 0.8;
+                n++;
+            }
+        size_t k0 = same_as_full(x, y, n, NULL, 0.9, 0), k1 = same_as_full(x, y, n, mask, 0.9, 0);
+        assert_true(k0 > 10 && k1 < k0);
+    }
+    /* two clusters far apart: the grid would be too large, the whole cloud */
+    random_cloud(x, y, 400, 7);
+    for (size_t i = 200; i < 400; i++)
+        x[i] += 1e4;
+    assert_true(same_as_full(x, y, 400, NULL, 0.05, 0) > 0);
+    /* bad arguments */
+    vor_hole *h = NULL;
+    size_t nh = 7;
+    ump_err err;
+    assert_int_equal(vor_holes_inside(x, y, 400, NULL, 0.0, 0.05, &h, &nh, &err), UMP_ERR_INPUT);
+    assert_int_equal(vor_holes_inside(x, y, 400, NULL, 0.1, -1.0, &h, &nh, &err), UMP_ERR_INPUT);
+    assert_int_equal(vor_holes_inside(x, y, 2, NULL, 0.1, 0.05, &h, &nh, &err), UMP_OK);
+    assert_int_equal(nh, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -457,6 +562,7 @@ int main(void)
         cmocka_unit_test(test_degenerate),
         cmocka_unit_test(test_threads),
         cmocka_unit_test(test_silent),
+        cmocka_unit_test(test_inside_matches),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
