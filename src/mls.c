@@ -447,24 +447,37 @@ mls_basis mls_full(const double *dx, const double *dy, int n, double h, mls_wfun
     const double ih = 1 / h;
     /* S and its derivatives S_a (a = X, Y, XX, XY, YY): S_a = sum w_a b b^T
      * (Eqs. 10, 13, 15), upper triangles of the quadratic basis */
-    double S[6][6][6] = {{{0}}};
+    double S[6][6][6]; /* upper triangles, from mom below */
     int nw = 0;
     double wsum = 0;
+    /* the 21 products b_i b_k are 15 monomials X^p Y^q, p + q <= 4: the
+     * moments of those (mom[monomial][a]), then S */
+    double mom[15][6] = {{0}};
     for (int j = 0; j < n; j++) {
-        double X = dx[j] * ih, Y = dy[j] * ih, wd[6], b[6];
+        double X = dx[j] * ih, Y = dy[j] * ih, wd[6];
+        if (!(X * X + Y * Y < 1))
+            continue; /* beyond the support: no weight (mls_wfun_eval) */
         wderiv(wf, X, Y, wd);
         if (wd[0] <= 0)
             continue;
         nw++;
         wsum += wd[0];
-        basis(X, Y, b);
-        for (int i = 0; i < 6; i++)
-            for (int k = i; k < 6; k++) {
-                double bb = b[i] * b[k];
-                for (int a = 0; a < 6; a++)
-                    S[a][i][k] += wd[a] * bb;
-            }
+        double X2 = X * X, Y2 = Y * Y, XY = X * Y;
+        const double mono[15] = {1, X, Y, X2, XY, Y2, X2 * X, X2 * Y, XY * Y, Y2 * Y,
+                                 X2 * X2, X2 * XY, X2 * Y2, XY * Y2, Y2 * Y2};
+        for (int m = 0; m < 15; m++)
+#pragma omp simd
+            for (int a = 0; a < 6; a++)
+                mom[m][a] += mono[m] * wd[a];
     }
+    /* monomial of b_i b_k, b = [1 X Y X^2 XY Y^2] */
+    static const unsigned char mk[6][6] = {{0, 1, 2, 3, 4, 5},     {1, 3, 4, 6, 7, 8},
+                                           {2, 4, 5, 7, 8, 9},     {3, 6, 7, 10, 11, 12},
+                                           {4, 7, 8, 11, 12, 13},  {5, 8, 9, 12, 13, 14}};
+    for (int a = 0; a < 6; a++)
+        for (int i = 0; i < 6; i++)
+            for (int k = i; k < 6; k++)
+                S[a][i][k] = mom[mk[i][k]][a];
     int nb = nw >= 6 ? 6 : nw >= 3 ? 3 : nw >= 1 ? 1 : 0;
     spd_small f;
     double rcond = 0;
@@ -537,8 +550,9 @@ mls_basis mls_full(const double *dx, const double *dy, int n, double h, mls_wfun
      * physical units (d/dx = d/dX / h) */
     const double s1 = ih, s2 = ih * ih;
     for (int j = 0; j < n; j++) {
-        double X = dx[j] * ih, Y = dy[j] * ih, wd[6], b[6];
-        wderiv(wf, X, Y, wd);
+        double X = dx[j] * ih, Y = dy[j] * ih, wd[6] = {0}, b[6];
+        if (X * X + Y * Y < 1) /* as in the moments */
+            wderiv(wf, X, Y, wd);
         if (wd[0] <= 0) /* as in the moments: no weight, no part in the fit */
             wd[0] = wd[1] = wd[2] = wd[3] = wd[4] = wd[5] = 0;
         basis(X, Y, b);
