@@ -984,7 +984,7 @@ static void move_walls(mlapp *a, double t, double dt, int first)
  * leaves the mesh is dropped again). */
 static ump_status manage(mlapp *a, int insert, fpm_manage_stats *ms, ump_err *err)
 {
-    fpm_manage_params mg = {a->ml.d_wall, a->ml.d_min, a->ml.r_hole, a->ml.shift_a, insert};
+    fpm_manage_params mg = {a->ml.d_wall, a->ml.d_min, a->ml.r_hole, a->ml.shift_a, a->ml.d_rep, a->ml.c_rep, insert};
     const unsigned char *keep;
     UMP_CALL(fpm_manage(a->fpm, &mg, &keep, ms, err));
     size_t n1 = a->s->n; /* with the inserted ones */

@@ -232,6 +232,7 @@ typedef struct case_meshless {
     double max_loss;             /* FPM: stop when this fraction of the liquid's particles is merged away */
     double d_wall, d_min, r_hole;/* particle management / l0 (fpm_manage) */
     double shift_a;              /* particle shifting coefficient; 0: off */
+    double d_rep, c_rep;         /* FPM close-pair repulsion radius / l0 (0: off), coefficient */
     long manage_interval;        /* steps between particle managements */
 } case_meshless;
 

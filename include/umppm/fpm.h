@@ -150,6 +150,14 @@ double fpm_max_dt(const fpm *f, double co, double cg, double u_wave);
  *           and wet wall points whose radius exceeds r_hole, inside their
  *           triangle, one per triangle and no two sharing a vertex per
  *           call; velocity and pressure by the MLS fit there (c0 of Eq. 1)
+ *   repel   (d_rep > 0; before the walls and the merging) fluid pairs
+ *           closer than d_rep: (a) a collision (MPS's model, Lee et al. 2011):
+ *           the approaching part of the relative velocity is exchanged,
+ *           restitution 0.2, and the particles move by dt times that
+ *           change; (b) a repulsive shift dr_i = c_rep sum_j (d_rep - r_ij)
+ *           e_ij over fluid and ghost neighbours within d_rep, at most
+ *           0.2 l0, free-surface particles not shifted; velocity u +
+ *           dr.grad u. Neither acts on a lattice (no pair closer than l0)
  * *keep [n before the call + inserted]: 0 for the particles merged away
  * (the caller compacts: part_compact, then fpm_compact); inserted
  * particles are appended to the part_set, their cell that of a neighbour
@@ -157,6 +165,7 @@ double fpm_max_dt(const fpm *f, double co, double cg, double u_wave);
 typedef struct fpm_manage_params {
     double d_wall, d_min, r_hole; /* / l0; 0 switches the action off */
     double shift;                 /* shifting coefficient A; 0: off */
+    double d_rep, c_rep;          /* close-pair repulsion: radius / l0 (0: off), coefficient */
     int insert;                   /* search the holes (qhull) in this call */
 } fpm_manage_params;
 typedef struct fpm_manage_stats {

@@ -240,11 +240,11 @@ fi
 
 # ---- 3c. FPM on 1 and 2 threads ------------------------------------------------
 # the same dam break by FPM to t = 0.06 s (merging, insertion, particle
-# shifting and the wall distance all at work): the clouds written with 1
-# and 2 threads agree bit for bit
+# shifting, the close-pair repulsion and the wall distance all at work):
+# the clouds written with 1 and 2 threads agree bit for bit
 fd=$work/fpmDam2
 sed -i '/^meshless/,/^}/d' "$fd/system/fvSolution"
-printf 'meshless\n{\n    method FPM;\n}\n' >> "$fd/system/fvSolution"
+printf 'meshless\n{\n    method FPM;\n    pairRepulsion 0.8;\n}\n' >> "$fd/system/fvSolution"
 foam_set "$fd" system/controlDict endTime 0.06
 foam_set "$fd" system/controlDict writeInterval 0.06
 cp -r "$fd" "$work/fpmDam1"

@@ -17,6 +17,9 @@
  * The map a step applies to its pressure, I - L^-1 D G: its growth per
  * step on jittered lattices, above 1 on some clouds with the MLS Laplacian
  * (the FPM runs' divergence, sooner with a smaller dt), at most 1 stabilised.
+ * The close-pair repulsion of fpm_manage: nothing moves on a lattice, a
+ * pair 0.6 l0 apart is pushed to 0.6 + 2 c (d - 0.6) l0, and an approaching
+ * pair collides with restitution 0.2, keeping its momentum.
  */
 #include "testutil.h"
 #include "umppm/fpm.h"
@@ -488,6 +491,84 @@ static void test_projection_map(void **state)
     assert_true(worst_mls > 1.05);
 }
 
+/* The close-pair repulsion (fpm_manage, pairRepulsion): a 12 x 10 block
+ * in free flight (no walls, no gravity, u = (0.1, 0) m/s), one step, then
+ * fpm_manage with the repulsion alone (d = 0.8 l0): (1) on the lattice
+ * nothing moves, bit for bit; (2) an inside particle moved 0.4 l0 towards
+ * its right neighbour: each of the two is pushed c (d - 0.6 l0) apart, no
+ * other particle moves and the velocities stay uniform; (3) the same pair
+ * approaching at 1 m/s with c = 0 (the collision alone): the relative
+ * normal velocity reversed times the restitution 0.2, the pair's momentum
+ * kept, each particle moved by dt times its velocity change. */
+static void test_pair_repulsion(void **state)
+{
+    (void)state;
+    const double l = 0.01, u0 = 0.1, dt = 1e-4, d = 0.8, c = 0.25;
+    const int nx = 12, ny = 10;
+    ump_err err;
+    part_set *s = NULL;
+    assert_int_equal(part_create(256, &s, &err), UMP_OK);
+    for (int j = 0; j < ny; j++)
+        for (int i = 0; i < nx; i++)
+            assert_int_equal(part_add(s, (i + 0.5) * l, (j + 0.5) * l, u0, 0, 0, 0, NULL, &err), UMP_OK);
+    fpm_params P = {.l0 = l, .h = 3 * l, .weight = MLS_WFUN_SPLINE, .rho = 1000, .nu = 0, .g = {0, 0},
+                    .re_s = 2.1, .beta = 0.97, .shift = 0.2, .gamma = 0, .stab = 1, .p_tol = 1e-10,
+                    .maxit = 1000};
+    fpm *f = NULL;
+    assert_int_equal(fpm_create(&P, s, 0, 0, NULL, NULL, &f, &err), UMP_OK);
+    fpm_stats st;
+    if (fpm_step(f, dt, &st, &err) != UMP_OK)
+        fail_msg("fpm_step: %s", err.msg);
+    const size_t n = s->n;
+    const size_t a = 5 * nx + 5, b = a + 1; /* inside, 4.5 l0 or more from the block's edges */
+    assert_false(fpm_surface(f)[a]);
+    assert_false(fpm_surface(f)[b]);
+    double *x0 = malloc(n * sizeof *x0), *y0 = malloc(n * sizeof *y0), *ua = malloc(n * sizeof *ua);
+    for (size_t i = 0; i < n; i++)
+        x0[i] = s->x[i], y0[i] = s->y[i], ua[i] = s->u[i];
+    const unsigned char *keep;
+    fpm_manage_stats ms;
+    fpm_manage_params mg = {.d_rep = d, .c_rep = c};
+
+    /* (1) the lattice */
+    assert_int_equal(fpm_manage(f, &mg, &keep, &ms, &err), UMP_OK);
+    for (size_t i = 0; i < n; i++)
+        assert_true(s->x[i] == x0[i] && s->y[i] == y0[i] && s->u[i] == ua[i] && keep[i]);
+
+    /* (2) a close pair */
+    s->x[a] += 0.4 * l;
+    const double xa = s->x[a];
+    assert_int_equal(fpm_manage(f, &mg, &keep, &ms, &err), UMP_OK);
+    const double push = c * (d - 0.6) * l, gap = (s->x[b] - s->x[a]) / l;
+    double others = 0, du = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (i != a && i != b)
+            others = fmax(others, fmax(fabs(s->x[i] - x0[i]), fabs(s->y[i] - y0[i])));
+        du = fmax(du, fmax(fabs(s->u[i] - u0), fabs(s->v[i])));
+    }
+    print_message("close-pair repulsion: a pair 0.6 l0 apart -> %.6f l0 (expected %.6f); other particles moved "
+                  "%.3g l0; largest velocity change %.3g m/s\n", gap, 0.6 + 2 * push / l, others / l, du);
+    assert_true(fabs(s->x[a] - (xa - push)) < 1e-12 * l && fabs(s->x[b] - (x0[b] + push)) < 1e-12 * l);
+    assert_true(fabs(s->y[a] - y0[a]) < 1e-12 * l && fabs(s->y[b] - y0[b]) < 1e-12 * l);
+    assert_true(others == 0);
+    assert_true(du < 1e-9 * u0);
+
+    /* (3) the collision alone: the pair 0.6 l0 apart, approaching */
+    s->x[a] = xa, s->x[b] = x0[b];
+    s->u[a] = u0 + 0.5, s->u[b] = u0 - 0.5;
+    mg.c_rep = 0;
+    assert_int_equal(fpm_manage(f, &mg, &keep, &ms, &err), UMP_OK);
+    const double rel = s->u[b] - s->u[a], mom = s->u[a] + s->u[b];
+    print_message("collision: relative normal velocity -1 -> %.6f m/s (restitution 0.2), momentum %.6f -> %.6f\n",
+                  rel, 2 * u0, mom);
+    assert_true(fabs(rel - 0.2) < 1e-12 && fabs(mom - 2 * u0) < 1e-12);
+    assert_true(fabs(s->x[a] - (xa + dt * (s->u[a] - u0 - 0.5))) < 1e-15);
+    assert_true(fabs(s->x[b] - (x0[b] + dt * (s->u[b] - u0 + 0.5))) < 1e-15);
+    free(x0), free(y0), free(ua);
+    fpm_free(&f);
+    part_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -496,6 +577,7 @@ int main(void)
         cmocka_unit_test(test_sine_convergence),
         cmocka_unit_test(test_ppe_manufactured),
         cmocka_unit_test(test_projection_map),
+        cmocka_unit_test(test_pair_repulsion),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
