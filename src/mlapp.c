@@ -1167,7 +1167,7 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
     /* FPM: the liquid's particles at the start, against which merging net of
      * insertion is measured (each particle stands for l0^2 of liquid) */
     const size_t nfluid0 = a.s->n - ml_nsolid(&a);
-    int loss_warned = 0;
+    int loss_warned = 0, gain_warned = 0;
     double stage_cpu[6] = {0}, stage_wall[6] = {0};
     static const char *const mps_stage[6] = {"neighbours, number density", "viscosity (implicit, CG)",
                                              "pressure (PPE, CG)", "correction", "locate on the mesh", ""};
@@ -1307,6 +1307,27 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
                        "particles (%zu merged, %zu inserted): the liquid's volume shrinks by as much\n",
                        100 * loss, run_merged, run_inserted);
                 loss_warned = 1;
+            }
+        }
+        if (a.fpm && run_inserted > run_merged && nfluid0 > 0) {
+            /* nor a silent gain: insertion at Voronoi holes that merging
+             * does not balance adds l0^2 of liquid each time (where the
+             * cloud spreads, in a thinning jet or a splash) */
+            double gain = (double)(run_inserted - run_merged) / (double)nfluid0;
+            if (gain > a.ml.max_gain) {
+                rc = UMP_FAIL(err, UMP_ERR_INPUT,
+                              "FPM particle management has added %.1f %% to the liquid's %zu particles by time %s "
+                              "(%zu merged, %zu inserted): the liquid's volume is no longer conserved (the particle "
+                              "distribution has degenerated); nothing of this step was written (meshless "
+                              "maxParticleGain %g)", 100 * gain, nfluid0, t.name, run_merged, run_inserted,
+                              a.ml.max_gain);
+                goto done;
+            }
+            if (!gain_warned && gain > 0.05) {
+                printf("--> meshlessFoam Warning: FPM particle management has added %.1f %% to the liquid's "
+                       "particles (%zu merged, %zu inserted): the liquid's volume grows by as much\n",
+                       100 * gain, run_merged, run_inserted);
+                gain_warned = 1;
             }
         }
         if (!(umax <= a.u_bound)) {

@@ -230,6 +230,7 @@ typedef struct case_meshless {
     double stab_fpm;             /* FPM: weight of the stabilising term of the PPE Laplacian */
     double surf_damp_fpm;        /* FPM: free-surface velocity damping / (l0 sqrt(|g| l0)) */
     double max_loss;             /* FPM: stop when this fraction of the liquid's particles is merged away */
+    double max_gain;             /* FPM: ... or when insertion has added this fraction */
     double d_wall, d_min, r_hole;/* particle management / l0 (fpm_manage) */
     double shift_a;              /* particle shifting coefficient; 0: off */
     double d_rep, c_rep;         /* FPM close-pair repulsion radius / l0 (0: off), coefficient */
