@@ -953,7 +953,7 @@ static const case_option meshless_options[] = {
      "FPM: fluid particles closer to a wall go back to this distance / l0; 0: off", ML_FIELD(d_wall)},
     {"mergeDistance", CASE_OPT_SCALAR, "0.5", 0.5, NULL, NULL, ML_CLOSED(0, 0.9),
      "FPM: pairs closer than this / l0 are merged; 0: off", ML_FIELD(d_min)},
-    {"holeRadius", CASE_OPT_SCALAR, "0.9", 0.9, NULL, NULL, UM_GE(0),
+    {"holeRadius", CASE_OPT_SCALAR, "1.2", 1.2, NULL, NULL, UM_GE(0),
      "FPM: a particle is inserted in Voronoi holes of radius > this / l0; 0: off", ML_FIELD(r_hole)},
     {"particleShifting", CASE_OPT_SCALAR, "0", 0, NULL, NULL, ML_CLOSED(0, 10),
      "FPM: particle shifting coefficient A (dr = -A (r_s/2) |u| dt grad C, Skillen et al. 2013); 0: off",

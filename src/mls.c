@@ -478,7 +478,11 @@ mls_basis mls_full(const double *dx, const double *dy, int n, double h, mls_wfun
         for (int i = 0; i < 6; i++)
             for (int k = i; k < 6; k++)
                 S[a][i][k] = mom[mk[i][k]][a];
-    int nb = nw >= 6 ? 6 : nw >= 3 ? 3 : nw >= 1 ? 1 : 0;
+    /* the quadratic basis on MLS_MIN_QUAD samples or more, as mls_weights:
+     * on 6 or 7 the fit interpolates, and at the thin tip of a jet on a
+     * wall its gradient was up to 6.7 m/s per step of pressure correction
+     * (a particle ejected from the dam break's front; docs/METHOD.md 11) */
+    int nb = nw >= MLS_MIN_QUAD ? 6 : nw >= 3 ? 3 : nw >= 1 ? 1 : 0;
     spd_small f;
     double rcond = 0;
     while (nb > 1) {

@@ -201,9 +201,11 @@ ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *e
  *              gravityStepFPM 0.24; surfaceRadius 3; surfaceBeta 0.8;
  *              surfaceShift 0.2; densitySourceFPM 0.02;
  *              laplacianStabilization 1; surfaceDampingFPM 0.1;
- *              wallDistance 0.25; mergeDistance 0.5; holeRadius 0.9;
- *              particleShifting 0; maxParticleLoss 0.2; manageInterval 1; }
- * (the last sixteen serve method FPM; reNumberDensity .. restitution and
+ *              wallDistance 0.25; mergeDistance 0.5; holeRadius 1.2;
+ *              pairRepulsion 0.8; pairRepulsionCoeff 0.25;
+ *              particleShifting 0; maxParticleLoss 0.2; maxParticleGain 0.2;
+ *              manageInterval 1; }
+ * (the last nineteen serve method FPM; reNumberDensity .. restitution and
  * maxCo serve MPS) */
 typedef struct case_meshless {
     char method[16];             /* MPS */

@@ -117,7 +117,7 @@ void mls_wfun_eval(mls_wfun wf, double q, double *w, double *w1, double *wq, dou
  * them, at offset 0), support radius h (samples at d >= h have weight 0):
  *   d^k u / dx^a dy^b (target) ~ sum_j c[k][j] u_j, k = MLS_C0 .. MLS_CYY.
  * Any c[k] may be NULL. Falls back to the linear basis (second derivatives
- * 0) when fewer than 6 samples have weight or the equilibrated S has a
+ * 0) when fewer than MLS_MIN_QUAD samples have weight or the equilibrated S has a
  * reciprocal condition number below MLS_RCOND_MIN, and to Shepard (value
  * only, derivatives 0) below 3. No allocation. */
 mls_basis mls_full(const double *dx, const double *dy, int n, double h, mls_wfun wf, double *const c[MLS_NOUT],

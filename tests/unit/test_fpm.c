@@ -112,10 +112,10 @@ static void check_exact(mls_wfun wf, cloud_kind kind, int with_target)
             u[j] = qv(&f, xt + dx[j], yt + dy[j]);
         mls_info info;
         /* a corner: with h = 3 l only ~8 samples of the quarter disc have
-         * weight, and the tail ones little (S can go singular: the linear
-         * fall-back); h = 3.5 l reaches the next ring, 4 l for the
-         * faster-decaying weight of Eq. 4 */
-        double hq = kind != CLOUD_QUARTER ? 3 : wf == MLS_WFUN_EXP ? 4 : 3.5;
+         * weight, and the tail ones little (S can go singular, or fewer
+         * than MLS_MIN_QUAD samples have weight: the linear fall-back);
+         * h = 4 l reaches the next rings */
+        double hq = kind != CLOUD_QUARTER ? 3 : 4;
         mls_basis b = mls_full(dx, dy, n, hq * l, wf, c, &info);
         rmin = fmin(rmin, info.rcond);
         if (b != MLS_QUADRATIC)
