@@ -763,6 +763,39 @@ static double interp_at(const fpm *f, size_t c0, double x, double y, const doubl
     return t;
 }
 
+/* Particle i's displacement (sx, sy), at most cap long, plus dt times a
+ * velocity change (cu, cv) (a collision's): kept in dsx..dsv with the
+ * velocity at the new place, u + cu + (sx, sy).grad u (MLS gradient), for
+ * apply_shifts; returns the capped |(sx, sy)|. */
+static double stage_shift(fpm *f, size_t i, double sx, double sy, double cap, double cu, double cv, double dt)
+{
+    const double *u = f->s->u, *v = f->s->v;
+    double len = hypot(sx, sy);
+    if (len > cap) {
+        sx *= cap / len;
+        sy *= cap / len;
+        len = cap;
+    }
+    f->dsx[i] = sx + dt * cu;
+    f->dsy[i] = sy + dt * cv;
+    f->dsu[i] = cu + sx * row_sum(f, i, f->cx, f->sx[i], u) + sy * row_sum(f, i, f->cy, f->sy[i], u);
+    f->dsv[i] = cv + sx * row_sum(f, i, f->cx, f->sx[i], v) + sy * row_sum(f, i, f->cy, f->sy[i], v);
+    return len;
+}
+
+/* Apply what stage_shift kept, to the fluid particles [ns, n) (all
+ * computed first: Jacobi, no order or thread dependence). */
+static void apply_shifts(fpm *f, size_t ns, size_t n)
+{
+    part_set *s = f->s;
+    for (size_t i = ns; i < n; i++) {
+        s->x[i] += f->dsx[i];
+        s->y[i] += f->dsy[i];
+        s->u[i] += f->dsu[i];
+        s->v[i] += f->dsv[i];
+    }
+}
+
 ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char **keep, fpm_manage_stats *ms,
                       ump_err *err)
 {
@@ -827,25 +860,9 @@ ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char *
                 sx -= t * gx;
                 sy -= t * gy;
             }
-            double len = hypot(sx, sy);
-            if (len > cap) {
-                sx *= cap / len;
-                sy *= cap / len;
-                len = cap;
-            }
-            big = fmax(big, len);
-            f->dsx[i] = sx;
-            f->dsy[i] = sy;
-            /* the velocity at the new place: u + dr.grad u (MLS gradient) */
-            f->dsu[i] = sx * row_sum(f, i, f->cx, f->sx[i], s->u) + sy * row_sum(f, i, f->cy, f->sy[i], s->u);
-            f->dsv[i] = sx * row_sum(f, i, f->cx, f->sx[i], s->v) + sy * row_sum(f, i, f->cy, f->sy[i], s->v);
+            big = fmax(big, stage_shift(f, i, sx, sy, cap, 0, 0, 0));
         }
-        for (size_t i = ns; i < n; i++) {
-            s->x[i] += f->dsx[i];
-            s->y[i] += f->dsy[i];
-            s->u[i] += f->dsu[i];
-            s->v[i] += f->dsv[i];
-        }
+        apply_shifts(f, ns, n);
         ms->max_shift = big / l0;
     }
     if (mg->d_rep > 0 && f->dt_last > 0) {
@@ -889,25 +906,9 @@ ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char *
             }
             if (f->surf[i])
                 sx = sy = 0; /* measured: shifting the surface particles, even along the surface, lost the liquid */
-            double len = hypot(sx, sy);
-            if (len > cap) {
-                sx *= cap / len;
-                sy *= cap / len;
-                len = cap;
-            }
-            big = fmax(big, len);
-            f->dsx[i] = sx + dt * du;
-            f->dsy[i] = sy + dt * dv;
-            /* the velocity at the new place: u + dr.grad u (MLS gradient), plus the collision's change */
-            f->dsu[i] = du + sx * row_sum(f, i, f->cx, f->sx[i], s->u) + sy * row_sum(f, i, f->cy, f->sy[i], s->u);
-            f->dsv[i] = dv + sx * row_sum(f, i, f->cx, f->sx[i], s->v) + sy * row_sum(f, i, f->cy, f->sy[i], s->v);
+            big = fmax(big, stage_shift(f, i, sx, sy, cap, du, dv, dt));
         }
-        for (size_t i = ns; i < n; i++) {
-            s->x[i] += f->dsx[i];
-            s->y[i] += f->dsy[i];
-            s->u[i] += f->dsu[i];
-            s->v[i] += f->dsv[i];
-        }
+        apply_shifts(f, ns, n);
         ms->max_shift = fmax(ms->max_shift, big / l0);
     }
     if (mg->d_wall > 0) {

@@ -1167,7 +1167,7 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
     /* FPM: the liquid's particles at the start, against which merging net of
      * insertion is measured (each particle stands for l0^2 of liquid) */
     const size_t nfluid0 = a.s->n - ml_nsolid(&a);
-    int loss_warned = 0, gain_warned = 0;
+    int volume_warned[2] = {0, 0}; /* loss, gain */
     double stage_cpu[6] = {0}, stage_wall[6] = {0};
     static const char *const mps_stage[6] = {"neighbours, number density", "viscosity (implicit, CG)",
                                              "pressure (PPE, CG)", "correction", "locate on the mesh", ""};
@@ -1289,45 +1289,29 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
         if (lost)
             printf("--> meshlessFoam Warning: %zu particles could not be located on the mesh and were removed\n",
                    lost);
-        if (a.fpm && run_merged > run_inserted && nfluid0 > 0) {
-            /* no silent loss of liquid: merging that insertion does not
-             * make up for removes l0^2 of liquid each time */
-            double loss = (double)(run_merged - run_inserted) / (double)nfluid0;
-            if (loss > a.ml.max_loss) {
+        if (a.fpm && run_merged != run_inserted && nfluid0 > 0) {
+            /* no silent change of the liquid's volume: a merge that no
+             * insertion makes up for removes l0^2 of liquid, an insertion
+             * at a Voronoi hole that no merge balances (where the cloud
+             * spreads, in a thinning jet or a splash) adds it */
+            const int gain = run_inserted > run_merged;
+            const size_t net = gain ? run_inserted - run_merged : run_merged - run_inserted;
+            const double frac = (double)net / (double)nfluid0, limit = gain ? a.ml.max_gain : a.ml.max_loss;
+            const char *did = gain ? "added" : "removed", *prep = gain ? "to" : "of";
+            if (frac > limit) {
                 rc = UMP_FAIL(err, UMP_ERR_INPUT,
-                              "FPM particle management has removed %.1f %% of the liquid's %zu particles by time %s "
+                              "FPM particle management has %s %.1f %% %s the liquid's %zu particles by time %s "
                               "(%zu merged, %zu inserted): the liquid's volume is no longer conserved (the particle "
                               "distribution has degenerated); nothing of this step was written (meshless "
-                              "maxParticleLoss %g)", 100 * loss, nfluid0, t.name, run_merged, run_inserted,
-                              a.ml.max_loss);
+                              "%s %g)", did, 100 * frac, prep, nfluid0, t.name, run_merged, run_inserted,
+                              gain ? "maxParticleGain" : "maxParticleLoss", limit);
                 goto done;
             }
-            if (!loss_warned && loss > 0.05) {
-                printf("--> meshlessFoam Warning: FPM particle management has removed %.1f %% of the liquid's "
-                       "particles (%zu merged, %zu inserted): the liquid's volume shrinks by as much\n",
-                       100 * loss, run_merged, run_inserted);
-                loss_warned = 1;
-            }
-        }
-        if (a.fpm && run_inserted > run_merged && nfluid0 > 0) {
-            /* nor a silent gain: insertion at Voronoi holes that merging
-             * does not balance adds l0^2 of liquid each time (where the
-             * cloud spreads, in a thinning jet or a splash) */
-            double gain = (double)(run_inserted - run_merged) / (double)nfluid0;
-            if (gain > a.ml.max_gain) {
-                rc = UMP_FAIL(err, UMP_ERR_INPUT,
-                              "FPM particle management has added %.1f %% to the liquid's %zu particles by time %s "
-                              "(%zu merged, %zu inserted): the liquid's volume is no longer conserved (the particle "
-                              "distribution has degenerated); nothing of this step was written (meshless "
-                              "maxParticleGain %g)", 100 * gain, nfluid0, t.name, run_merged, run_inserted,
-                              a.ml.max_gain);
-                goto done;
-            }
-            if (!gain_warned && gain > 0.05) {
-                printf("--> meshlessFoam Warning: FPM particle management has added %.1f %% to the liquid's "
-                       "particles (%zu merged, %zu inserted): the liquid's volume grows by as much\n",
-                       100 * gain, run_merged, run_inserted);
-                gain_warned = 1;
+            if (!volume_warned[gain] && frac > 0.05) {
+                printf("--> meshlessFoam Warning: FPM particle management has %s %.1f %% %s the liquid's "
+                       "particles (%zu merged, %zu inserted): the liquid's volume %s by as much\n",
+                       did, 100 * frac, prep, run_merged, run_inserted, gain ? "grows" : "shrinks");
+                volume_warned[gain] = 1;
             }
         }
         if (!(umax <= a.u_bound)) {
