@@ -534,7 +534,7 @@ static double speed_scale(const app *a)
  * the value, the bound and the time. */
 static ump_status check_divergence(const app *a, const char *tname, ump_err *err)
 {
-    const double *u = sol_cell_u(a->S), *v = sol_cell_v(a->S), *p = sol_cell_p(a->S);
+    const double *u = sol_cell_u(a->S), *v = sol_cell_v(a->S), *p = sol_cell_p_projection(a->S);
     const double *T = sol_cell_T(a->S);
     const mesh2d *m = a->m;
     const double b2 = a->u_bound * a->u_bound;
@@ -880,6 +880,21 @@ static ump_status run_functions(app *a, const rt_time *t, long step, const char 
         }
     }
     return UMP_OK;
+}
+
+/* A surfaceFieldValue that reads p or p_rgh runs after step `step`
+ * (run_functions' rule). */
+static int functions_read_p(const app *a, const rt_time *t, long step)
+{
+    for (int i = 0; i < a->fo.nsf; i++) {
+        const fob_sfv *f = &a->fo.sf[i];
+        if (step == 0 || !fob_due(&f->c, step, t->write_time))
+            continue;
+        for (int j = 0; j < f->nfields; j++)
+            if (f->field[j] == FOB_FIELD_P || f->field[j] == FOB_FIELD_P_RGH)
+                return 1;
+    }
+    return 0;
 }
 
 /* The cell of the mesh holding pRefPoint (setRefCell.C: the point must be
@@ -1235,6 +1250,10 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
             printf("--> umppmFoam Warning: increased the timePrecision to %d to distinguish between "
                    "timeNames at time %s\n", t.precision, t.name);
         printf("Time = %s\n\n", t.name);
+        /* the pressure written costs a pass of its own (solver.h): only at
+         * the steps that write it, feed a function object with it, or may
+         * stop on a signal */
+        sol_want_pressure(a.S, t.write_time || functions_read_p(&a, &t, step + 1) || stopsig_pending());
         sol_stats st;
         if ((rc = sol_step(a.S, t.delta_t, &st, err)) != UMP_OK)
             goto done;
@@ -1265,6 +1284,8 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
             goto done;
         step++;
         int sig = stopsig_pending();
+        if (sig && !st.p_written && rt_running(&t))
+            sig = 0; /* arrived during a step without its pressure: the next step is written */
         if (sig)
             t.write_time = 1; /* stopAt writeNow: this step is written, the run ends */
         if ((rc = run_functions(&a, &t, step, tname, 0, err)) != UMP_OK)

@@ -194,6 +194,12 @@ typedef struct sol_state {
                                   of pressureInletOutletVelocity */
     double *prgh_f;            /* [nfaces] buoyant: prescribed p_rgh */
     double *Tc, *gtx, *gty;    /* buoyant: mesh temperature T_P, its LS gradient */
+    /* the pressure written (interpolation_error): p_d = p - q [ncells], the
+       interpolation error eps_f [nfaces], its potential q [ncells], zero
+       face values [nfaces] */
+    double *pout, *fluxe, *q, *fz;
+    int want_p;                /* this step computes pout (sol_want_pressure) */
+    int have_flux;             /* flux holds a corrected (divergence-free) phi^n */
     /* per particle */
     size_t wcap;
     double *x0, *y0, *us, *vs, *rhs_u, *rhs_v, *Ts, *rhs_T;
@@ -291,7 +297,7 @@ static void stage_mark(stage_clock *c, sol_stats *st, int stage)
 }
 
 static const char *const STAGE_NAMES[SOL_NSTAGES] = {
-    "boundary particles", "predictor rows (Step 6)", "predictor solve (Step 6)",
+    "boundary particles", "pressure written: MLS u^n faces", "predictor rows (Step 6)", "predictor solve (Step 6)",
     "move r* (Step 7)", "MLS u* faces/centroids (Step 8)", "PPE (Step 9)",
     "correct and move (Step 10)", "management (Step 11)", "continuity, Courant"};
 
@@ -335,7 +341,7 @@ void sol_free(sol **pS)
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
                    st->av, st->cnt_cell, st->pib, st->fluxb, st->pf0, st->gpx, st->gpy, st->empty,
-                   st->fu, st->fv, st->fT};
+                   st->fu, st->fv, st->fT, st->pout, st->fluxe, st->q, st->fz};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
     if (S->work)
@@ -996,12 +1002,13 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     su->m = m;
     su->set = *s;
     S->nthreads = sol_threads();
+    st->want_p = 1;
     ump_idx nc = m->ncells, nf = m->nfaces, nb = nf - m->ninternal;
     ump_status rc;
     if (!(S->work = ump_alloc_array((size_t)S->nthreads, sizeof *S->work)))
         goto nomem;
     double **cellarr[] = {&st->p, &st->pold, &st->uc, &st->vc, &st->usc, &st->vsc, &st->gx, &st->gy, &st->div,
-                          &st->fu, &st->fv, &st->fT};
+                          &st->fu, &st->fv, &st->fT, &st->pout, &st->q};
     for (size_t i = 0; i < sizeof cellarr / sizeof cellarr[0]; i++)
         if (!(*cellarr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
             goto nomem;
@@ -1009,6 +1016,8 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
         !(st->empty = ump_alloc_array((size_t)nc, sizeof(ump_idx))) ||
         !(st->flux = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->gflux = ump_alloc_array((size_t)nf, sizeof(double))) ||
+        !(st->fluxe = ump_alloc_array((size_t)nf, sizeof(double))) ||
+        !(st->fz = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->pf = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(su->p_dir = ump_alloc_array((size_t)nf, 1)) || !(su->u_kind = ump_alloc_array((size_t)nb, 1)) ||
         !(su->p_total = ump_alloc_array((size_t)nb, 1)) || !(su->p0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
@@ -1160,7 +1169,10 @@ ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y,
 void sol_set_pressure(sol *S, const double *p)
 {
     memcpy(S->st.p, p, (size_t)S->su.m->ncells * sizeof *S->st.p);
+    memcpy(S->st.pout, p, (size_t)S->su.m->ncells * sizeof *S->st.pout);
 }
+
+void sol_want_pressure(sol *S, int yes) { S->st.want_p = yes != 0; }
 
 /* The mean cell extent e passed to the MLS fits as Eq. 35's Delta-bar, or,
  * with mlsSupport r > 0, the fixed support r e (passed negative, mls.h):
@@ -1623,27 +1635,29 @@ static void mls_fit_values(sol_work *w, size_t cnt, double x, double y, double m
     }
 }
 
-/* u* at face centres (the fluxes u*_f . A_f of Eq. 20) and centroids, by
- * MLS from the particles at r*: one gather per cell serves its centroid and
- * the faces it owns. */
-static void step8_mls_velocity(sol *S)
+/* Boundary face f's velocity is prescribed (fixed value, symmetry/slip):
+ * Step 8 does not fit it. */
+static inline int velocity_prescribed(const sol_setup *su, ump_idx f)
+{
+    int k = su->u_kind[f - su->m->ninternal];
+    return k == BU_FIXED || k == BU_SYMMETRY;
+}
+
+/* MLS (Eq. 32) of the particle velocities (fu, fv) and the boundary
+ * particles' at the face centres, as fluxes u_f . A_f into flux[] (faces
+ * whose velocity is prescribed excepted: the caller sets those), and, when
+ * uc is given, at the centroids into uc, vc: one gather per cell serves its
+ * centroid and the faces it owns. */
+static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux, double *uc, double *vc)
 {
     const sol_setup *su = &S->su;
     sol_state *st = &S->st;
     const mesh2d *m = su->m;
     ump_idx nc = m->ncells, ni = m->ninternal;
-    const double *f[2] = {st->us, st->vs}, *g[2] = {st->bp.u, st->bp.v};
+    const double *f[2] = {fu, fv}, *g[2] = {st->bp.u, st->bp.v};
 #pragma omp parallel num_threads(S->nthreads)
     {
         sol_work *w = &S->work[thread_id()];
-#pragma omp for schedule(static)
-        for (ump_idx fb = ni; fb < m->nfaces; fb++) { /* prescribed faces */
-            ump_idx b = fb - ni;
-            if (su->u_kind[b] == BU_FIXED)
-                st->flux[fb] = (st->ub[b] * m->nx[fb] + st->vb[b] * m->ny[fb]) * m->len[fb];
-            else if (su->u_kind[b] == BU_SYMMETRY)
-                st->flux[fb] = 0;
-        }
 #pragma omp for schedule(dynamic, 64)
         for (ump_idx c = 0; c < nc; c++) {
             if (w->rc != UMP_OK)
@@ -1657,12 +1671,16 @@ static void step8_mls_velocity(sol *S)
             }
             double uv[2];
             gather_values(w, cnt, 2, f, g);
-            mls_fit_values(w, cnt, m->cx[c], m->cy[c], mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), -1, 2,
-                           uv);
-            st->usc[c] = uv[0];
-            st->vsc[c] = uv[1];
+            if (uc) {
+                mls_fit_values(w, cnt, m->cx[c], m->cy[c], mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]),
+                               -1, 2, uv);
+                uc[c] = uv[0];
+                vc[c] = uv[1];
+            }
             for (ump_idx a = su->of_off[c]; a < su->of_off[c + 1]; a++) {
                 ump_idx fa = su->of_face[a];
+                if (fa >= ni && velocity_prescribed(su, fa))
+                    continue;
                 double mdx = m->dx[c], mdy = m->dy[c];
                 if (fa < ni) {
                     mdx = 0.5 * (mdx + m->dx[m->neigh[fa]]);
@@ -1670,10 +1688,54 @@ static void step8_mls_velocity(sol *S)
                 }
                 mls_fit_values(w, cnt, m->fx[fa], m->fy[fa], mls_extent(su, mdx), mls_extent(su, mdy),
                                fa >= ni ? fa - ni : -1, 2, uv);
-                st->flux[fa] = (uv[0] * m->nx[fa] + uv[1] * m->ny[fa]) * m->len[fa]; /* u*_f . A_f, Eq. 20 */
+                flux[fa] = (uv[0] * m->nx[fa] + uv[1] * m->ny[fa]) * m->len[fa]; /* u_f . A_f, Eq. 20 */
             }
         }
     }
+}
+
+/* u* at face centres (the fluxes u*_f . A_f of Eq. 20) and centroids, by
+ * MLS from the particles at r*; faces whose velocity is prescribed take it
+ * (symmetry planes and slip walls: no flux). */
+static void step8_mls_velocity(sol *S)
+{
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    ump_idx ni = m->ninternal;
+    for (ump_idx fb = ni; fb < m->nfaces; fb++) {
+        ump_idx b = fb - ni;
+        if (su->u_kind[b] == BU_FIXED)
+            st->flux[fb] = (st->ub[b] * m->nx[fb] + st->vb[b] * m->ny[fb]) * m->len[fb];
+        else if (su->u_kind[b] == BU_SYMMETRY)
+            st->flux[fb] = 0;
+    }
+    mls_to_mesh(S, st->us, st->vs, st->flux, st->usc, st->vsc);
+}
+
+/* The interpolation error of the particle-to-mesh map (docs/METHOD.md
+ * section 8, "The pressure written"), for the pressure written: at the
+ * start of the step, before the predictor, the particles at r^n carry u^n,
+ * and the mesh has the corrected, divergence-free fluxes phi^n of the last
+ * step. eps_f = MLS(u^n at r^n)_f - phi^n_f is what Step 8 would add to
+ * the fluxes if nothing had changed: the MLS error, the values the last
+ * management gave new particles, the MLS derivative of Eq. 10 that is not
+ * the PPE's face gradient. Step 9's fluxes u*_f = phi^n_f + [MLS(u*, r*)
+ * - MLS(u^n, r^n)]_f + eps_f, so its pressure is p = p_d + q, p_d from the
+ * physical change of the step (advection and viscosity) and q the
+ * potential of D eps / dt, which grows as 1/dt and is no pressure of the
+ * flow. Faces whose velocity is prescribed: eps = 0 (their change of value
+ * in time is physical). */
+static void interpolation_error(sol *S)
+{
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    ump_idx ni = m->ninternal;
+    mls_to_mesh(S, st->P->u, st->P->v, st->fluxe, NULL, NULL);
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+    for (ump_idx f = 0; f < m->nfaces; f++)
+        st->fluxe[f] = f >= ni && velocity_prescribed(su, f) ? 0.0 : st->fluxe[f] - st->flux[f];
 }
 
 /* Balanced buoyancy (docs/METHOD.md section 6; the paper puts the whole
@@ -2060,6 +2122,12 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     if (su->set.p_theta > 0)
         path_pressure_kick(S, stats);
     stage_mark(&clk, stats, SOL_STAGE_BOUNDARY);
+    int split = st->want_p && st->have_flux;
+    if (split) {
+        interpolation_error(S);
+        UMP_CALL(work_collect(S, stats, err));
+        stage_mark(&clk, stats, SOL_STAGE_PWRITE);
+    }
     UMP_CALL(step6_rows(S, dt, err));
     UMP_CALL(work_collect(S, stats, err));
     stage_mark(&clk, stats, SOL_STAGE_ROWS);
@@ -2071,11 +2139,27 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     UMP_CALL(work_collect(S, stats, err));
     stage_mark(&clk, stats, SOL_STAGE_MLS);
     UMP_CALL(step9_pressure(S, dt, err));
+    if (split) { /* the potential of the interpolation error, same factorization */
+        UMP_CALL(ppe_solve(su->pe, st->fluxe, dt, st->fz, st->q, err));
+        if (su->need_ref) { /* the reference level belongs to p_d */
+            double r = st->q[su->set.p_ref_cell];
+            for (ump_idx c = 0; c < su->m->ncells; c++)
+                st->q[c] -= r;
+        }
+    }
     stats->p_res0 = S->su.pe->res0;
     stats->p_res = S->su.pe->res;
     stats->p_solver = lsolve_name(S->su.pe->fac);
     stage_mark(&clk, stats, SOL_STAGE_PPE);
     step10_correct(S, dt, stats);
+    if (st->want_p) {
+        ump_idx nc = su->m->ncells;
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+        for (ump_idx c = 0; c < nc; c++)
+            st->pout[c] = split ? st->p[c] - st->q[c] : st->p[c];
+    }
+    stats->p_written = st->want_p;
+    st->have_flux = 1;
     stage_mark(&clk, stats, SOL_STAGE_CORRECT);
     UMP_CALL(step11_manage(S, stats, err));
     stage_mark(&clk, stats, SOL_STAGE_MANAGE);
@@ -2105,7 +2189,8 @@ void sol_courant(const sol *S, double dt, double *mean, double *max)
 
 const double *sol_cell_u(const sol *S) { return S->st.uc; }
 const double *sol_cell_v(const sol *S) { return S->st.vc; }
-const double *sol_cell_p(const sol *S) { return S->st.p; }
+const double *sol_cell_p(const sol *S) { return S->st.pout; }
+const double *sol_cell_p_projection(const sol *S) { return S->st.p; }
 const double *sol_face_flux(const sol *S) { return S->st.flux; }
 
 /* [HNS16] Eqs. 13 and 22 per fluid particle, over the predictor's
@@ -2153,7 +2238,7 @@ void sol_face_values(const sol *S, ump_idx f, double *u, double *v, double *p)
     ump_idx o = m->owner[f];
     *u = st->uc[o];
     *v = st->vc[o];
-    *p = st->p[o];
+    *p = st->pout[o];
     if (f < m->ninternal)
         return;
     boundary_velocity(su, st, f - m->ninternal, f, u, v);
@@ -2178,7 +2263,7 @@ void sol_buoyant_pressure(const sol *S, ump_idx c, ump_idx f, double *p, double 
     double shift = 0;
     if (su->need_ref) { /* pEqn.H: p += pRefValue - p[pRefCell] */
         ump_idx r = s->p_ref_cell;
-        shift = s->p_ref_value - (st->p[r] + su->ghc[r]);
+        shift = s->p_ref_value - (st->pout[r] + su->ghc[r]);
     }
     double pi, gh, T;
     if (f >= 0) {
@@ -2187,7 +2272,7 @@ void sol_buoyant_pressure(const sol *S, ump_idx c, ump_idx f, double *p, double 
         gh = su->ghf[f];
         T = sol_face_T(S, f);
     } else {
-        pi = st->p[c];
+        pi = st->pout[c];
         gh = su->ghc[c];
         T = st->Tc[c];
     }

@@ -11,6 +11,8 @@
 #   L2_42    Eq. 42: sqrt(sum (u - u_theo)^2 / N_m), x-velocity
 #   amp      signed amplitude error: (sum U.U0 / sum U0.U0) / e^{bt} - 1, the
 #            fit of the field onto the initial one (> 0: decays too slowly)
+#   pL2rel   ||p - p_ex||_2 / ||p_ex||_2 over cells, each less its mean,
+#            p_ex = p0 e^{2bt} (Eq. 40; p0 = 0/p); "-" without a TIME/p
 import math, re, sys
 case, tname = sys.argv[1], sys.argv[2]
 nu = float(sys.argv[3]) if len(sys.argv) > 3 else 0.01
@@ -22,6 +24,13 @@ def read(path):
     n = int(m.group(1))
     v = [tuple(map(float, x.group(1).split())) for x in re.finditer(r'\(([^()]*)\)', t[m.end():])]
     return v[:n]
+def read_scalar(path):
+    t = open(path).read()
+    m = re.search(r'internalField\s+nonuniform List<scalar>\s*\n?(\d+)\s*\(', t)
+    if not m:
+        sys.exit(f"{path}: expected 'internalField nonuniform List<scalar>' (ascii)")
+    n = int(m.group(1))
+    return [float(x) for x in t[m.end():].split(None, n)[:n]]
 U0, U = read(f'{case}/0/U'), read(f'{case}/{tname}/U')
 g = math.exp(-8 * math.pi ** 2 * nu * float(tname))
 num = sum((u[0] - g * a[0]) ** 2 + (u[1] - g * a[1]) ** 2 for u, a in zip(U, U0))
@@ -30,5 +39,14 @@ m0 = max(math.hypot(a[0], a[1]) for a in U0)
 m1 = max(math.hypot(u[0], u[1]) for u in U)
 l2x = math.sqrt(sum((u[0] - g * a[0]) ** 2 for u, a in zip(U, U0)) / len(U))
 amp = sum(u[0] * a[0] + u[1] * a[1] for u, a in zip(U, U0)) / sum(a[0] ** 2 + a[1] ** 2 for a in U0)
+perr = "-"
+try:
+    P0, P = read_scalar(f'{case}/0/p'), read_scalar(f'{case}/{tname}/p')
+    q0, q1 = sum(P0) / len(P0), sum(P) / len(P)
+    e = sum((b - q1 - g * g * (a - q0)) ** 2 for a, b in zip(P0, P))
+    r = sum((g * g * (a - q0)) ** 2 for a in P0)
+    perr = f"{math.sqrt(e / r):.6g}"
+except (OSError, ValueError):
+    pass
 print(f"L2rel {math.sqrt(num/den):.6g} Linf_decay {abs(m1/m0 - g)/g:.6g} "
-      f"Linf41 {abs(m1 - g)/g:.6g} L2_42 {l2x:.6g} amp {amp / g - 1:+.6g}")
+      f"Linf41 {abs(m1 - g)/g:.6g} L2_42 {l2x:.6g} amp {amp / g - 1:+.6g} pL2rel {perr}")

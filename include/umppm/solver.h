@@ -93,8 +93,8 @@ void sol_default_settings(sol_settings *s);
 
 /* Stages of a step, timed separately (sol_stats.stage_cpu/stage_wall). */
 enum {
-    SOL_STAGE_BOUNDARY, SOL_STAGE_ROWS, SOL_STAGE_SOLVE, SOL_STAGE_MOVE, SOL_STAGE_MLS, SOL_STAGE_PPE,
-    SOL_STAGE_CORRECT, SOL_STAGE_MANAGE, SOL_STAGE_DIAG, SOL_NSTAGES
+    SOL_STAGE_BOUNDARY, SOL_STAGE_PWRITE, SOL_STAGE_ROWS, SOL_STAGE_SOLVE, SOL_STAGE_MOVE, SOL_STAGE_MLS,
+    SOL_STAGE_PPE, SOL_STAGE_CORRECT, SOL_STAGE_MANAGE, SOL_STAGE_DIAG, SOL_NSTAGES
 };
 /* Name of a stage for logs ("predictor rows (Step 6)", ...). */
 const char *sol_stage_name(int stage);
@@ -110,6 +110,7 @@ typedef struct sol_stats {
     double p_res0, p_res;        /* PPE: OpenFOAM-normalised residual before and
                                     after the direct solve */
     const char *p_solver;        /* the direct solver's name (UMFPACK, ...) */
+    int p_written;               /* this step computed the pressure written (sol_cell_p) */
     int lap_fallbacks;           /* particles whose CPM matrix was singular */
     int mls_fallbacks;           /* MLS fits that fell back to linear/Shepard */
     double cont_local, cont_global, cont_max; /* continuity after correction:
@@ -150,6 +151,11 @@ ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y,
                              size_t *dropped, ump_err *err);
 /* Set the cell pressure (restart) before the first step. */
 void sol_set_pressure(sol *S, const double *p);
+/* Whether the coming steps compute the pressure written, sol_cell_p
+ * (default yes). It costs one more MLS pass over the faces and one more
+ * solve per step and changes nothing else: a caller that writes the
+ * pressure only at some steps asks for it before those. */
+void sol_want_pressure(sol *S, int yes);
 
 /* The new time t of the coming step: evaluates the boundary conditions that
  * are functions of time (uniformFixedValue of U or p, flowRateInletVelocity),
@@ -169,7 +175,15 @@ void sol_courant(const sol *S, double dt, double *mean, double *max);
  * for boundary faces (velocity per 2-D boundary face). Borrowed. */
 const double *sol_cell_u(const sol *S);
 const double *sol_cell_v(const sol *S);
+/* The pressure written (kinematic): the solution of the PPE of the last
+ * step that computed it (sol_want_pressure; sol_stats.p_written) less the
+ * potential of the particle-to-mesh interpolation error (docs/METHOD.md
+ * section 8, "The pressure written"); the first step after the start has
+ * no previous corrected fluxes and writes the PPE's solution. */
 const double *sol_cell_p(const sol *S);
+/* The PPE's solution of the last step, the pressure whose gradient
+ * corrected the particles and the mesh velocity (Eqs. 10 and 36). */
+const double *sol_cell_p_projection(const sol *S);
 /* Face fluxes u_f . A_f per unit thickness [nfaces] after the last step's
  * correction (Eq. 20 with the new pressure; zero before the first step),
  * oriented owner to neighbour, outwards on boundary faces. */

@@ -31,6 +31,12 @@
 #     0.01) L2 < 0.02 (measured 0.0142; CPM 0.066: the quadratic fit's
 #     O(h^2) under-dissipation), at U = 1 L2 < 0.025 and Eq. 41 < 0.02
 #     (measured 0.0181 and 0.0045; 0.0169 and 0.0032 with refillParticles 5);
+#   - the pressure written (Eq. 40, each less its mean) at t = 5: relative
+#     L2 error < 0.06 on N_m = 1600 (measured 0.0354; the PPE's own
+#     solution, written until 2026-12-04, 0.111: it holds the potential of
+#     the interpolation error, docs/METHOD.md section 8, "The pressure
+#     written") and < 0.025 on N_m = 6400 (measured 0.0145; the PPE's
+#     0.0116);
 #   - N_m = 6400 at the same CFL, default: L2 < 0.002 (measured 0.00093;
 #     0.0038 with mlsSupport 0, so the check tells the two apart);
 #   - variant UMPPM, refill carried, refillParticles 1, mlsSupport 0: L2
@@ -88,18 +94,20 @@ sed 's/endTime 0.2;/endTime 5;/; s/deltaT 0.005;/deltaT 0.00625;/; s/writeInterv
 cp "$c/system/fvSolution" "$g/system/" && cp "$c/constant/transportProperties" "$g/constant/"
 "$TOOLDIR/makeCrossedTriangleMesh" -case "$g" -n 20 > /dev/null
 "$TOOLDIR/setTaylorGreen" -case "$g" > /dev/null
-# tg_run DIR LABEL L2_BOUND [EQ41_BOUND]: run, then check the errors at t = 5
+# tg_run DIR LABEL L2_BOUND [EQ41_BOUND [P_BOUND]]: run, then check the
+# errors at t = 5 (P_BOUND: the pressure's relative L2 error, Eq. 40)
 tg_run() {
     if "$UMPPMFOAM" -case "$1" > "$1/log" 2>&1; then
-        read -r _ l2 _ _ _ e41 _ < <(python3 "$top/tools/taylorGreenError.py" "$1" 5)
-        echo "Taylor-Green $2 t=5: L2 relative error $l2, Eq. 41 $e41"
+        read -r _ l2 _ _ _ e41 _ _ _ _ _ pl2 _ < <(python3 "$top/tools/taylorGreenError.py" "$1" 5)
+        echo "Taylor-Green $2 t=5: L2 relative error $l2, Eq. 41 $e41, pressure $pl2"
         check_below "$2: L2 relative error" "$l2" "$3"
         [ -z "${4:-}" ] || check_below "$2: Eq. 41" "$e41" "$4"
+        [ -z "${5:-}" ] || check_below "$2: pressure, relative L2 error" "$pl2" "$5"
     else
         echo "FAIL: umppmFoam ($2)"; tail -3 "$1/log"; fail=1
     fi
 }
-tg_run "$g" "N_m 1600, CFL 0.25" 0.035 0.02
+tg_run "$g" "N_m 1600, CFL 0.25" 0.035 0.02 0.06
 # the same with Eq. 35's own MLS scales: the carried refill's accuracy
 m0=$work/tg1600-eq35
 mkdir -p "$m0" && cp -r "$g/0" "$g/constant" "$g/system" "$m0/"
@@ -114,7 +122,7 @@ sed 's/deltaT 0.00625;/deltaT 0.003125;/' "$g/system/controlDict" > "$g64/system
 cp "$c/system/fvSolution" "$g64/system/" && cp "$c/constant/transportProperties" "$g64/constant/"
 "$TOOLDIR/makeCrossedTriangleMesh" -case "$g64" -n 40 > /dev/null
 "$TOOLDIR/setTaylorGreen" -case "$g64" > /dev/null
-tg_run "$g64" "N_m 6400, CFL 0.25" 0.002
+tg_run "$g64" "N_m 6400, CFL 0.25" 0.002 "" 0.025
 # pressureTheta 0.5 (trapezoidal pressure impulse along the path): the
 # damping of order dt that the default's impulse at r* adds to a turning
 # path is gone, so the run at U = 1 and a Stokes run at U = 0.01 (particles
