@@ -142,6 +142,7 @@ typedef struct sol_setup {
     ump_idx *st_off, *st_cell;
     double *st_sx, *st_sy;
     ump_idx st_max;            /* largest stencil (cells) */
+    ump_idx pd_max;            /* most fixed-pressure faces of one stencil's cells */
     /* the same stencils as runs of consecutive cells with one shift: cells
      * ru_q0[r] .. ru_q1[r]-1, whose particles are consecutive in the bins */
     ump_idx *ru_off, *ru_q0, *ru_q1;
@@ -149,6 +150,7 @@ typedef struct sol_setup {
     /* per cell: its stencil holds boundary particles (their set is fixed;
      * laplacian CPM4 keeps CPM there) */
     unsigned char *st_bnd;
+    ump_idx *pd_off, *pd_face; /* per cell [ncells+1]: its fixed-pressure boundary faces */
     /* faces whose u* is interpolated (not fixed, not symmetry), by owner */
     ump_idx *of_off, *of_face;
 } sol_setup;
@@ -186,6 +188,8 @@ typedef struct sol_state {
                                   pressure p^{n-1/2} (balanced buoyancy: pi_d),
                                   then the increment phi of this step */
     double *pf;                /* [nfaces] face pressure of fixed faces (pi) */
+    double *pfprev, *pfphi;    /* [nfaces] pressureTheta > 0: pf of pold, of the increment */
+    double *bpu0, *bpv0;       /* [nb] boundary particle velocities saved during Step 8 */
     double *pib, *fluxb, *pf0; /* buoyant (balanced): pi_b [ncells], its face fluxes
                                   dt b_f . A_f [nfaces], zero face values [nfaces] */
     /* boundary values of this step per boundary face b = f - ninternal */
@@ -341,7 +345,8 @@ void sol_free(sol **pS)
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
                    st->av, st->cnt_cell, st->pib, st->fluxb, st->pf0, st->gpx, st->gpy, st->empty,
-                   st->fu, st->fv, st->fT, st->pout, st->fluxe, st->q, st->fz};
+                   st->fu, st->fv, st->fT, st->pout, st->fluxe, st->q, st->fz, st->pfprev, st->pfphi,
+                   su->pd_off, su->pd_face, st->bpu0, st->bpv0};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
     if (S->work)
@@ -990,6 +995,41 @@ static ump_status particles_build(sol_setup *su, sol_state *st, ump_err *err)
     return grow_particle_work(st, st->P->n, err);
 }
 
+/* Per cell, its fixed-pressure boundary faces (CSR), and the most of them
+ * one particle stencil holds (the work arrays' size). */
+static ump_status dirichlet_faces_build(sol_setup *su, ump_err *err)
+{
+    const mesh2d *m = su->m;
+    ump_idx nc = m->ncells, ni = m->ninternal;
+    if (!(su->pd_off = ump_alloc_array((size_t)nc + 1, sizeof *su->pd_off)))
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the fixed-pressure faces");
+    for (int pass = 0; pass < 2; pass++) {
+        ump_idx k = 0;
+        for (ump_idx c = 0; c < nc; c++) {
+            su->pd_off[c] = k;
+            for (ump_idx a = m->cell_face_off[c]; a < m->cell_face_off[c + 1]; a++) {
+                ump_idx f = m->cell_faces[a];
+                if (f >= ni && su->p_dir[f]) {
+                    if (pass)
+                        su->pd_face[k] = f;
+                    k++;
+                }
+            }
+        }
+        su->pd_off[nc] = k;
+        if (!pass && !(su->pd_face = ump_alloc_array((size_t)k, sizeof *su->pd_face)))
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the fixed-pressure faces");
+    }
+    su->pd_max = 0;
+    for (ump_idx c = 0; c < nc; c++) {
+        ump_idx t = 0;
+        for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++)
+            t += su->pd_off[su->st_cell[a] + 1] - su->pd_off[su->st_cell[a]];
+        su->pd_max = UMP_MAX(su->pd_max, t);
+    }
+    return UMP_OK;
+}
+
 ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U, const fld_field *pfld,
                       const fld_field *T, sol **out, ump_err *err)
 {
@@ -1022,6 +1062,8 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
         !(su->p_dir = ump_alloc_array((size_t)nf, 1)) || !(su->u_kind = ump_alloc_array((size_t)nb, 1)) ||
         !(su->p_total = ump_alloc_array((size_t)nb, 1)) || !(su->p0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
         !(st->ub = ump_alloc_array((size_t)nb, sizeof(double))) ||
+        !(st->bpu0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
+        !(st->bpv0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
         !(st->vb = ump_alloc_array((size_t)nb, sizeof(double))))
         goto nomem;
     if (s->buoyant) {
@@ -1064,6 +1106,11 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     su->need_ref = 1;
     for (ump_idx f = 0; f < nf; f++)
         su->need_ref &= !su->p_dir[f];
+    if (s->p_theta > 0 && (!(st->pfprev = ump_alloc_array((size_t)nf, sizeof(double))) ||
+                           !(st->pfphi = ump_alloc_array((size_t)nf, sizeof(double)))))
+        goto nomem;
+    if (s->p_theta > 0)
+        memcpy(st->pfprev, st->pf, (size_t)nf * sizeof *st->pf);
     if (s->buoyant) /* the initial p_rgh as pi (solver.h) */
         for (ump_idx c = 0; c < nc; c++)
             st->p[c] -= s->beta * (st->Tc[c] - s->t_ref) * su->ghc[c];
@@ -1103,8 +1150,10 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     }
     if ((rc = lsolve_rows_create(&st->kry, err)) != UMP_OK)
         goto fail;
+    if ((rc = dirichlet_faces_build(su, err)) != UMP_OK)
+        goto fail;
     for (int t = 0; t < S->nthreads; t++)
-        if ((rc = work_reserve(&S->work[t], 4 * (size_t)su->st_max + 64, err)) != UMP_OK)
+        if ((rc = work_reserve(&S->work[t], 4 * (size_t)su->st_max + (size_t)su->pd_max + 64, err)) != UMP_OK)
             goto fail;
     /* face fluxes of the initial cell velocities (linear interpolation), as
      * icoFoam's createPhi: the first Courant number and inletOutlet need them */
@@ -1188,7 +1237,15 @@ static inline double mls_extent(const sol_setup *su, double e)
  * (Eqs. 33-34) of the centroid values p of the particle's cell and its N2
  * stencil (Eq. 10's pressure gradient). Returns the count of fits that fell
  * back from the quadratic basis. */
-static long particle_pressure_gradient(sol *S, const double *p, double *gxo, double *gyo)
+/* grad p at every particle at its position (Eq. 10's gradient): the MLS
+ * derivative (Eqs. 33-34) of the centroid pressures p of the particle's
+ * cell and its N2 stencil, and of the prescribed pressures pfv at the
+ * fixed-pressure boundary faces of those cells (docs/METHOD.md section 8,
+ * "Fixed pressures in the particles' gradient"): the PPE's face gradient
+ * at such a face is (p_f - p_A')/|A'f|, and a gradient from the centroids
+ * alone extrapolates past the face and misses it, so the particles next
+ * to an outlet were corrected by another pressure than the mesh. */
+static long particle_pressure_gradient(sol *S, const double *p, const double *pfv, double *gxo, double *gyo)
 {
     const sol_setup *su = &S->su;
     const mesh2d *m = su->m;
@@ -1205,9 +1262,16 @@ static long particle_pressure_gradient(sol *S, const double *p, double *gxo, dou
             int nn = 0;
             for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
                 ump_idx q = su->st_cell[a];
-                w->h[nn] = m->cx[q] + (su->st_sx ? su->st_sx[a] : 0) - x;
-                w->k[nn] = m->cy[q] + (su->st_sy ? su->st_sy[a] : 0) - y;
+                double sx = su->st_sx ? su->st_sx[a] : 0, sy = su->st_sy ? su->st_sy[a] : 0;
+                w->h[nn] = m->cx[q] + sx - x;
+                w->k[nn] = m->cy[q] + sy - y;
                 w->pv[nn++] = p[q];
+                for (ump_idx d = su->pd_off[q]; d < su->pd_off[q + 1]; d++) {
+                    ump_idx f = su->pd_face[d];
+                    w->h[nn] = m->fx[f] + sx - x;
+                    w->k[nn] = m->fy[f] + sy - y;
+                    w->pv[nn++] = pfv[f];
+                }
             }
             if (mls_gradient(w->h, w->k, w->pv, nn, mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), &gxo[i],
                              &gyo[i], NULL) !=
@@ -1539,7 +1603,7 @@ static void path_pressure_kick(sol *S, sol_stats *stats)
     for (ump_idx c = 0; c < nc; c++)
         st->pold[c] = bal ? st->p[c] - st->pib[c] : st->p[c];
     /* us, vs are free until the predictor solve */
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pold, st->us, st->vs);
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pold, st->pfprev, st->us, st->vs);
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (size_t i = 0; i < n; i++) {
         st->gpx[i] = (bal ? st->gpx[i] : 0.0) + th * st->us[i];
@@ -1635,6 +1699,25 @@ static void mls_fit_values(sol_work *w, size_t cnt, double x, double y, double m
     }
 }
 
+/* Open boundary face f whose velocity is zeroGradient at this step (the
+ * boundary particle carries the owner's u_P, boundary_velocity): zeroGradient,
+ * inletOutlet and pressureInletOutletVelocity while the last flux left,
+ * outletInlet while it entered. */
+static int open_zero_gradient(const sol_setup *su, const sol_state *st, ump_idx f)
+{
+    switch (su->u_kind[f - su->m->ninternal]) {
+    case BU_OUTLET:
+        return 1;
+    case BU_INLETOUTLET:
+    case BU_PRESSUREINLETOUTLET:
+        return st->flux[f] >= 0;
+    case BU_OUTLETINLET:
+        return st->flux[f] < 0;
+    default:
+        return 0;
+    }
+}
+
 /* Boundary face f's velocity is prescribed (fixed value, symmetry/slip):
  * Step 8 does not fit it. */
 static inline int velocity_prescribed(const sol_setup *su, ump_idx f)
@@ -1710,7 +1793,37 @@ static void step8_mls_velocity(sol *S)
         else if (su->u_kind[b] == BU_SYMMETRY)
             st->flux[fb] = 0;
     }
+    /* open faces whose velocity is zeroGradient at this step: their boundary
+     * particles carry the owner's corrected u_P of the last step (set at the
+     * start of the step), a value at the level of u^n; for this fit they
+     * take the viscous increment u* - u^n of the owner cell's particles
+     * too, so they are at the level of u* like the particles around them
+     * (docs/METHOD.md section 8, "Open faces at the level of u*"). Without
+     * it the flux out of a viscous channel lacked dt nu lap(u), and the PPE
+     * left the last half cell before the outlet without its pressure drop
+     * (Poiseuille, Re 10: p 0 instead of 0.06 in the last column). */
+    part_boundary *bp = &st->bp;
+    for (ump_idx b = 0; b < bp->n; b++) {
+        st->bpu0[b] = bp->u[b];
+        st->bpv0[b] = bp->v[b];
+        ump_idx f = bp->face[b], o = m->owner[f];
+        if (!open_zero_gradient(su, st, f))
+            continue;
+        double du = 0, dv = 0;
+        ump_idx k0 = st->bins.off[o], k1 = st->bins.off[o + 1];
+        for (ump_idx q = k0; q < k1; q++) {
+            size_t i = st->bins.idx[q];
+            du += st->us[i] - st->P->u[i];
+            dv += st->vs[i] - st->P->v[i];
+        }
+        if (k1 > k0) {
+            bp->u[b] += du / (double)(k1 - k0);
+            bp->v[b] += dv / (double)(k1 - k0);
+        }
+    }
     mls_to_mesh(S, st->us, st->vs, st->flux, st->usc, st->vsc);
+    memcpy(bp->u, st->bpu0, (size_t)bp->n * sizeof *bp->u);
+    memcpy(bp->v, st->bpv0, (size_t)bp->n * sizeof *bp->v);
 }
 
 /* The interpolation error of the particle-to-mesh map (docs/METHOD.md
@@ -1790,7 +1903,7 @@ static ump_status balance_buoyancy(sol *S, double dt, sol_stats *stats, ump_err 
         for (ump_idx c = 0; c < m->ncells; c++)
             st->pib[c] -= r;
     }
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pib, st->gpx, st->gpy);
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pib, st->pf0, st->gpx, st->gpy);
     return UMP_OK;
 }
 
@@ -1839,14 +1952,17 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
      * pressureTheta th > 0: the increment phi = p - th p^{n-1/2}, the part
      * path_pressure_kick has not applied */
     double th = su->set.p_theta;
-    const double *phi = st->p;
+    const double *phi = st->p, *phif = st->pf;
     if (th > 0) {
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
         for (ump_idx c = 0; c < nc; c++)
             st->pold[c] = st->p[c] - th * st->pold[c];
+        for (ump_idx f = m->ninternal; f < m->nfaces; f++)
+            st->pfphi[f] = st->pf[f] - th * st->pfprev[f];
         phi = st->pold;
+        phif = st->pfphi;
     }
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, phi, st->gpx, st->gpy);
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, phi, phif, st->gpx, st->gpy);
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (size_t i = 0; i < n; i++) {
         P->u[i] = st->us[i] - dt * st->gpx[i];
@@ -1854,6 +1970,8 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
     }
     /* r^{n+1} = r^n + dt u^{n+1} (Eq. 7) */
     move_particles(S, P->u, P->v, dt, &stats->walled);
+    if (th > 0) /* the face values that belong to p^{n+1/2}, the next step's pold */
+        memcpy(st->pfprev, st->pf, (size_t)m->nfaces * sizeof *st->pf);
     /* mesh velocity, Eq. 36, with the LS gradient of Eq. 26 */
     lsq_gradient(su->g, phi, st->gx, st->gy);
     int bal = su->set.buoyant && su->set.balanced;
