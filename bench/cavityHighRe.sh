@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# bench/cavityHighRe.sh [-Re 10000] [-n "64 96"] [-endTime 100] [-runs "umppm ico-linear ico-LUD ico-LLV"]
+#                       [-work DIR]
+# The high-Re lid-driven cavity on coarse meshes (issue 14, item 3): OpenFOAM's
+# icoFoam cavity tutorial (blockMesh, its 0/, fvSolution) with scale 1, n x n
+# cells, nu = 1/Re, fixed deltaT = 0.5/n (lid Courant number 0.5), endTime,
+# run by
+#   umppm       umppmFoam with its defaults (UMPPM*, CPM)
+#   umppm-UMPPM umppmFoam, variant UMPPM (alpha 0.09)
+#   ico-linear  icoFoam, the tutorial's Gauss linear
+#   ico-LUD     icoFoam, div(phi,U) Gauss linearUpwind grad(U)
+#   ico-LLV     icoFoam, div(phi,U) Gauss limitedLinearV 1
+# one thread each, one after the other. Prints per run the RMS and max error
+# against Ghia, Ghia & Shin (1982) of u on x = 0.5 and of v on y = 0.5
+# (tools/ghiaCompare at the last time written) and the CPU seconds (user + sys of the
+# solver). endTime 100 is not the steady state Ghia tabulates at Re 10 000:
+# the rows compare the solvers at one instant of a developing flow.
+# UMPPM_BIN: the directory of umppmFoam and ghiaCompare (default bin/).
+set -eu -o pipefail
+top=$(cd "$(dirname "$0")/.." && pwd)
+Re=10000 ns="64 96" endTime=100 runs="umppm ico-linear ico-LUD ico-LLV" work=""
+while [ $# -gt 0 ]; do
+    case $1 in
+    -Re) Re=$2 ;; -n) ns=$2 ;; -endTime) endTime=$2 ;; -runs) runs=$2 ;; -work) work=$2 ;;
+    *) echo "unknown option $1" >&2; exit 1 ;;
+    esac
+    shift 2
+done
+make -C "$top" -s >/dev/null
+export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
+ex=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam/cavity/cavity
+[ -d "$ex" ] || { echo "no $ex (openfoam-examples)" >&2; exit 1; }
+work=${work:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-highRe.XXXXXX")}
+mkdir -p "$work"
+printf "# cavity Re %s, t = %s, lid Courant number 0.5, one thread; errors against Ghia et al. (1982); work %s\n" \
+    "$Re" "$endTime" "$work"
+printf "%5s %-12s %8s %8s %8s %8s %9s\n" n run u_rms u_max v_rms v_max CPU_s
+for n in $ns; do
+    base=$work/mesh$n
+    if [ ! -f "$base/constant/polyMesh/owner" ]; then
+        rm -rf "$base" && cp -r "$ex" "$base"
+        (cd "$base" &&
+            sed -i -E "s/\( *20 +20 +1 *\)/($n $n 1)/" system/blockMeshDict &&
+            grep -q "($n $n 1)" system/blockMeshDict &&
+            foamDictionary system/blockMeshDict -entry scale -set 1 > /dev/null &&
+            foamDictionary constant/transportProperties -entry nu -set "[0 2 -1 0 0 0 0] $(awk -v r="$Re" 'BEGIN { print 1 / r }')" > /dev/null &&
+            foamDictionary system/controlDict -entry deltaT -set "$(awk -v n="$n" 'BEGIN { print 0.5 / n }')" > /dev/null &&
+            foamDictionary system/controlDict -entry endTime -set "$endTime" > /dev/null &&
+            foamDictionary system/controlDict -entry writeControl -set runTime > /dev/null &&
+            foamDictionary system/controlDict -entry writeInterval -set "$endTime" > /dev/null &&
+            blockMesh > log.blockMesh 2>&1) || { echo "mesh $n failed" >&2; exit 1; }
+    fi
+    for r in $runs; do
+        d=$work/n$n-$r
+        if [ ! -f "$d/cpu.txt" ]; then
+            rm -rf "$d" && cp -r "$base" "$d"
+            case $r in
+            umppm) cmd=("${UMPPM_BIN:-$top/bin}/umppmFoam") ;;
+            umppm-UMPPM) printf 'UMPPM { variant UMPPM; alpha 0.09; }\n' >> "$d/system/fvSolution"
+                cmd=("${UMPPM_BIN:-$top/bin}/umppmFoam") ;;
+            ico-linear) cmd=(icoFoam) ;;
+            ico-LUD) foamDictionary "$d/system/fvSchemes" -entry divSchemes/div\(phi,U\) \
+                    -set "Gauss linearUpwind grad(U)" > /dev/null; cmd=(icoFoam) ;;
+            ico-LLV) foamDictionary "$d/system/fvSchemes" -entry divSchemes/div\(phi,U\) \
+                    -set "Gauss limitedLinearV 1" > /dev/null; cmd=(icoFoam) ;;
+            *) echo "unknown run $r" >&2; exit 1 ;;
+            esac
+            (cd "$d" && OMP_NUM_THREADS=1 /usr/bin/time -f "%U %S" -o cpu.run "${cmd[@]}" > log.run 2>&1) ||
+                { echo "failed: $r on $n (log $d/log.run)" >&2; continue; }
+            mv "$d/cpu.run" "$d/cpu.txt"
+        fi
+        t=$(foamListTimes -case "$d" -latestTime 2> /dev/null | tail -1) # deltaT 0.5/n: 99.999936 for n = 96
+        read -r _ _ urms umax vrms vmax < <("${UMPPM_BIN:-$top/bin}/ghiaCompare" -Re "$Re" "$d" "$t" | tail -1)
+        printf "%5s %-12s %8s %8s %8s %8s %9s\n" "$n" "$r" "$urms" "$umax" "$vrms" "$vmax" \
+            "$(awk '{ printf "%.1f", $1 + $2 }' "$d/cpu.txt")"
+    done
+done
