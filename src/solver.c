@@ -1803,12 +1803,16 @@ static void step8_mls_velocity(sol *S)
      * left the last half cell before the outlet without its pressure drop
      * (Poiseuille, Re 10: p 0 instead of 0.06 in the last column). */
     part_boundary *bp = &st->bp;
+    int moved = 0;
     for (ump_idx b = 0; b < bp->n; b++) {
-        st->bpu0[b] = bp->u[b];
-        st->bpv0[b] = bp->v[b];
         ump_idx f = bp->face[b], o = m->owner[f];
         if (!open_zero_gradient(su, st, f))
             continue;
+        if (!moved) { /* the first open face: keep the values to restore */
+            memcpy(st->bpu0, bp->u, (size_t)bp->n * sizeof *bp->u);
+            memcpy(st->bpv0, bp->v, (size_t)bp->n * sizeof *bp->v);
+            moved = 1;
+        }
         double du = 0, dv = 0;
         ump_idx k0 = st->bins.off[o], k1 = st->bins.off[o + 1];
         for (ump_idx q = k0; q < k1; q++) {
@@ -1822,8 +1826,10 @@ static void step8_mls_velocity(sol *S)
         }
     }
     mls_to_mesh(S, st->us, st->vs, st->flux, st->usc, st->vsc);
-    memcpy(bp->u, st->bpu0, (size_t)bp->n * sizeof *bp->u);
-    memcpy(bp->v, st->bpv0, (size_t)bp->n * sizeof *bp->v);
+    if (moved) {
+        memcpy(bp->u, st->bpu0, (size_t)bp->n * sizeof *bp->u);
+        memcpy(bp->v, st->bpv0, (size_t)bp->n * sizeof *bp->v);
+    }
 }
 
 /* The interpolation error of the particle-to-mesh map (docs/METHOD.md

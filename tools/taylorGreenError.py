@@ -16,22 +16,20 @@
 import math, re, sys
 case, tname = sys.argv[1], sys.argv[2]
 nu = float(sys.argv[3]) if len(sys.argv) > 3 else 0.01
-def read(path):
+def read(path, kind='vector'):
+    """The internalField of an ascii vol<kind>Field: tuples (vector) or floats."""
     t = open(path).read()
-    m = re.search(r'internalField\s+nonuniform List<vector>\s*\n?(\d+)\s*\(', t)
+    m = re.search(r'internalField\s+nonuniform List<' + kind + r'>\s*\n?(\d+)\s*\(', t)
     if not m:
-        sys.exit(f"{path}: expected 'internalField nonuniform List<vector>' (ascii)")
-    n = int(m.group(1))
-    v = [tuple(map(float, x.group(1).split())) for x in re.finditer(r'\(([^()]*)\)', t[m.end():])]
-    return v[:n]
-def read_scalar(path):
-    t = open(path).read()
-    m = re.search(r'internalField\s+nonuniform List<scalar>\s*\n?(\d+)\s*\(', t)
-    if not m:
-        sys.exit(f"{path}: expected 'internalField nonuniform List<scalar>' (ascii)")
-    n = int(m.group(1))
-    return [float(x) for x in t[m.end():].split(None, n)[:n]]
-U0, U = read(f'{case}/0/U'), read(f'{case}/{tname}/U')
+        raise ValueError(f"{path}: expected 'internalField nonuniform List<{kind}>' (ascii)")
+    n, body = int(m.group(1)), t[m.end():]
+    if kind == 'scalar':
+        return [float(x) for x in body.split(None, n)[:n]]
+    return [tuple(map(float, x.group(1).split())) for x in re.finditer(r'\(([^()]*)\)', body)][:n]
+try:
+    U0, U = read(f'{case}/0/U'), read(f'{case}/{tname}/U')
+except (OSError, ValueError) as e:
+    sys.exit(str(e))
 g = math.exp(-8 * math.pi ** 2 * nu * float(tname))
 num = sum((u[0] - g * a[0]) ** 2 + (u[1] - g * a[1]) ** 2 for u, a in zip(U, U0))
 den = sum((g * a[0]) ** 2 + (g * a[1]) ** 2 for a in U0)
@@ -41,7 +39,7 @@ l2x = math.sqrt(sum((u[0] - g * a[0]) ** 2 for u, a in zip(U, U0)) / len(U))
 amp = sum(u[0] * a[0] + u[1] * a[1] for u, a in zip(U, U0)) / sum(a[0] ** 2 + a[1] ** 2 for a in U0)
 perr = "-"
 try:
-    P0, P = read_scalar(f'{case}/0/p'), read_scalar(f'{case}/{tname}/p')
+    P0, P = read(f'{case}/0/p', 'scalar'), read(f'{case}/{tname}/p', 'scalar')
     q0, q1 = sum(P0) / len(P0), sum(P) / len(P)
     e = sum((b - q1 - g * g * (a - q0)) ** 2 for a, b in zip(P0, P))
     r = sum((g * g * (a - q0)) ** 2 for a in P0)
