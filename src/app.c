@@ -87,29 +87,46 @@ typedef struct app {
 } app;
 
 /* Cells stretched beyond APP_ASPECT_WARN (bounding-box extents): the
- * paper's LS gradient and CPM fit fail there (README, "Anisotropic cells":
- * max |U| 25 against icoFoam's 0.70 on a 199:1 graded cavity), and
- * anisotropicCells only bounds that case. Said once, before the first
- * step, with the worst cell. */
+ * paper's LS gradient, CPM fit and MLS pressure derivative fail there
+ * (README, "Anisotropic cells": max |U| 25 against icoFoam's 0.70 on a
+ * 199:1 graded cavity; diverged at 1 700:1), so anisotropicCells auto (the
+ * default) turns the anisotropic operators on for such meshes. */
 #define APP_ASPECT_WARN 20.0
-static void warn_stretched(const mesh2d *m, int anisotropic)
+/* The most stretched cell's aspect ratio (bounding box), its index in *wc. */
+static double most_stretched(const mesh2d *m, ump_idx *wc)
 {
     double worst = 1;
-    ump_idx wc = -1;
+    *wc = -1;
     for (ump_idx c = 0; c < m->ncells; c++) {
         double dx = m->dx[c], dy = m->dy[c];
         if (!(dx > 0 && dy > 0))
             continue;
         double r = dx > dy ? dx / dy : dy / dx;
         if (r > worst)
-            worst = r, wc = c;
+            worst = r, *wc = c;
     }
-    if (worst > APP_ASPECT_WARN)
+    return worst;
+}
+
+/* Said once, before the first step, with the worst cell: what the
+ * stretched cells get (anisotropic: 1 on, 0 off; automatic: by auto). */
+static void report_stretched(const mesh2d *m, int anisotropic, int automatic)
+{
+    ump_idx wc;
+    double worst = most_stretched(m, &wc);
+    if (!(worst > APP_ASPECT_WARN))
+        return;
+    if (anisotropic)
+        printf("Stretched cells: cell %ld at (%g %g) is stretched %.0f:1 (bounding box %g x %g); "
+               "anisotropicCells %s: LS weights 1/|d|^2, CPM in cell units, positive rows, particle "
+               "gradient from the cell gradients (README, \"Anisotropic cells\")\n\n",
+               (long)wc, m->cx[wc], m->cy[wc], worst, m->dx[wc], m->dy[wc],
+               automatic ? "on (auto: above 20:1)" : "yes");
+    else
         printf("--> umppmFoam Warning: cell %ld at (%g %g) is stretched %.0f:1 (bounding box %g x %g); "
-               "above about %.0f:1 umppmFoam is not validated and can be wrong without diverging "
-               "(README, \"Anisotropic cells\")%s\n\n",
-               (long)wc, m->cx[wc], m->cy[wc], worst, m->dx[wc], m->dy[wc], APP_ASPECT_WARN,
-               anisotropic ? "" : "; UMPPM { anisotropicCells yes; } bounds some such cases");
+               "with anisotropicCells no, above about %.0f:1 umppmFoam can be wrong without diverging "
+               "(README, \"Anisotropic cells\"); anisotropicCells auto (the default) handles such meshes\n\n",
+               (long)wc, m->cx[wc], m->cy[wc], worst, m->dx[wc], m->dy[wc], APP_ASPECT_WARN);
 }
 
 static double wall_seconds(void)
@@ -162,7 +179,10 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->refill_k = (int)a->um.refill_k;
     s->mls_support = a->um.mls_support;
     s->p_theta = a->um.p_theta;
-    s->anisotropic = a->um.anisotropic;
+    /* anisotropicCells auto: on where a cell is stretched beyond
+     * APP_ASPECT_WARN (README, "Anisotropic cells") */
+    ump_idx wc;
+    s->anisotropic = a->um.anisotropic < 0 ? most_stretched(a->m, &wc) > APP_ASPECT_WARN : a->um.anisotropic;
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
     s->p_ref_value = a->so.p_ref_value;
     if (a->bu.on) {
@@ -1205,7 +1225,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         goto done;
     printf("Pressure mesh: %ld cells; PPE matrix assembled and factorized once (%.3g s); "
            "%zu particles\n\n", (long)a.m->ncells, wall_seconds() - tb, sol_particles(a.S)->n);
-    warn_stretched(a.m, s.anisotropic);
+    report_stretched(a.m, s.anisotropic, a.um.anisotropic < 0);
 
     rt_time t;
     rt_init(&t, &a.ctl, t0, tname);
@@ -1272,6 +1292,8 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         if (st.lap_fallbacks || st.mls_fallbacks)
             printf("Fallbacks: %d particle Laplacians (MPS), %d MLS fits (linear/Shepard)\n",
                    st.lap_fallbacks, st.mls_fallbacks);
+        if (st.positive_rows)
+            printf("Anisotropic cells: %d particle Laplacians made positive\n", st.positive_rows);
         /* OpenFOAM's solver-line form (foamLog parses it): the direct solve,
          * factorized once, is one "iteration" */
         printf("%s:  Solving for %s, Initial residual = %g, Final residual = %g, No Iterations 1\n",

@@ -443,6 +443,9 @@ static const char *const ppe_words[] = {"auto", "UMFPACK", "KLU", "CHOLMOD", NUL
 static const char *const pc_words[] = {"ILU0", "Jacobi", "none", NULL};
 static const char *const buoyancy_words[] = {"source", "balanced", NULL};
 static const int buoyancy_values[] = {0, 1};
+/* anisotropicCells: auto (-1, decided by the mesh, app.c) or an OpenFOAM Switch */
+static const char *const aniso_words[] = {"auto", "yes", "no", "on", "off", "true", "false", NULL};
+static const int aniso_values[] = {-1, 1, 0, 1, 0, 1, 0};
 static const char *const refill_words[] = {"auto", "centroid", "carried", NULL};
 static const int refill_values[] = {-1, 0, 1};
 
@@ -494,8 +497,10 @@ static const case_option umppm_options[] = {
     {"pressureTheta", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_0TOHALF,
      "previous pressure gradient share applied at r^n; 0.5: trapezoidal",
      UM_FIELD(p_theta)},
-    {"anisotropicCells", CASE_OPT_BOOL, "no", 0, NULL, NULL, UM_NORANGE,
-     "stretched cells: LS weights 1/|d|^2, CPM in cell-extent units", UM_FIELD(anisotropic)},
+    {"anisotropicCells", CASE_OPT_CHOICE, "auto", -1, aniso_words, aniso_values, UM_NORANGE,
+     "stretched cells: LS weights 1/|d|^2, CPM in cell-extent units, positive rows, "
+     "particle gradient from cell gradients; auto: yes if a cell is stretched beyond 20:1",
+     UM_FIELD(anisotropic)},
     {"buoyancy", CASE_OPT_CHOICE, "balanced", 1, buoyancy_words, buoyancy_values, UM_NORANGE,
      "buoyant: force in the predictor less its balancing pressure",
      UM_FIELD(buoyancy_balanced)},

@@ -241,6 +241,152 @@ static inline __attribute__((always_inline)) ump_status cpm_coeffs2(const double
     return UMP_OK;
 }
 
+/* ---- Positive rows -------------------------------------------------------
+ * A CPM row (Eqs. 16-17) is exact for quadratics, but its coefficients a_j
+ * may be negative, and then the implicit predictor (Eq. 14) is not an
+ * M-matrix: no maximum principle, and the viscous step can create velocity
+ * where there is none. On uniform lattices the negative part is below 1e-3
+ * of the positive one; on graded meshes (cells stretched 100:1 and more,
+ * one-sided stencils) it reaches the positive part, and u* overshoots the
+ * lid speed from rest. The positive row replaces such a row by the
+ * non-negative coefficients that come closest to the same consistency
+ * conditions, sum_j a_j p_j = (0, 0, 1, 0, 1) (p_j = [h, k, h^2/2, hk,
+ * k^2/2]), in the least-squares sense with a small penalty on far
+ * neighbours (the idea of Seibold's minimal positive stencils, B. Seibold,
+ * "Minimal positive stencils in meshfree finite difference methods for the
+ * Poisson equation", Comput. Methods Appl. Mech. Engrg. 198 (2008)
+ * 592-601, solved here as a non-negative least-squares problem rather than
+ * a linear programme):
+ *   min ||C a - b||^2 + lam^2 sum_j (r_j^3 a_j)^2   subject to a >= 0,
+ * C the 5 x n matrix of the p_j in the row's metric, hat units (offsets
+ * divided by the largest, like CPM). Where a positive stencil consistent
+ * to second order exists it is found (to lam); where none exists (a
+ * particle at a wall with every neighbour on one side) the row keeps the
+ * consistency it can with positive weights. Lawson-Hanson's active-set
+ * algorithm (C. L. Lawson, R. J. Hanson, Solving Least Squares Problems,
+ * 1974, Ch. 23); each passive-set solve is 5 x 5 by the Woodbury identity
+ * (D + C^T C)^{-1} C^T b = D^{-1} C^T (I + C D^{-1} C^T)^{-1} b with D =
+ * lam^2 diag(r^6). No allocation; rows with more than LAP_POS_MAX
+ * neighbours are left as they are. */
+#define LAP_POS_MAX 256
+#define LAP_POS_LAM 1e-3
+
+/* the passive-set solve: z_j = (C^T y)_j / d_j on the passive set,
+ * y = (I + C_P D_P^{-1} C_P^T)^{-1} b; z_j = 0 elsewhere */
+static int pos_solve(int n, const double (*p)[5], const double *d, const unsigned char *pas, const double *b,
+                     double *z)
+{
+    double m[SPD_MAX][SPD_MAX] = {{0}};
+    for (int r = 0; r < 5; r++)
+        m[r][r] = 1;
+    for (int j = 0; j < n; j++) {
+        if (!pas[j])
+            continue;
+        double id = 1 / d[j];
+        for (int r = 0; r < 5; r++)
+            for (int c = r; c < 5; c++)
+                m[r][c] += p[j][r] * p[j][c] * id;
+    }
+    spd_small f;
+    if (!(spd_factor_invert_fixed(&f, 5, m) > 0))
+        return -1;
+    double y[5], col[5];
+    for (int r = 0; r < 5; r++)
+        y[r] = 0;
+    for (int c = 0; c < 5; c++) {
+        spd_inv_column(&f, c, col);
+        for (int r = 0; r < 5; r++)
+            y[r] += col[r] * b[c];
+    }
+    for (int j = 0; j < n; j++) {
+        z[j] = 0;
+        if (pas[j])
+            z[j] = (p[j][0] * y[0] + p[j][1] * y[1] + p[j][2] * y[2] + p[j][3] * y[3] + p[j][4] * y[4]) / d[j];
+    }
+    return 0;
+}
+
+int lap_positive_row(const double *h, const double *k, int n, double sx, double sy, double tau, double *a)
+{
+    if (n <= 0 || n > LAP_POS_MAX)
+        return 0;
+    double sp = 0, sn = 0;
+    for (int j = 0; j < n; j++) {
+        if (a[j] > 0)
+            sp += a[j];
+        else
+            sn -= a[j];
+    }
+    if (!(sn > tau * sp))
+        return 0;
+    double p[LAP_POS_MAX][5], d[LAP_POS_MAX], z[LAP_POS_MAX], x[LAP_POS_MAX], g[LAP_POS_MAX];
+    unsigned char pas[LAP_POS_MAX];
+    double r2max = 0;
+    for (int j = 0; j < n; j++) {
+        double X = sx * h[j], Y = sy * k[j];
+        r2max = fmax(r2max, X * X + Y * Y);
+    }
+    if (!(r2max > 0) || !isfinite(r2max))
+        return 0;
+    double iL = 1 / sqrt(r2max);
+    /* targets in hat units: lap = sx^2 phi_XX + sy^2 phi_YY in the metric,
+     * scaled by s2 so that the larger is 1 */
+    double s2 = fmax(sx * sx, sy * sy), b[5] = {0, 0, sx * sx / s2, 0, sy * sy / s2};
+    for (int j = 0; j < n; j++) {
+        double X = sx * h[j] * iL, Y = sy * k[j] * iL, r2 = X * X + Y * Y;
+        p[j][0] = X, p[j][1] = Y, p[j][2] = 0.5 * X * X, p[j][3] = X * Y, p[j][4] = 0.5 * Y * Y;
+        d[j] = LAP_POS_LAM * LAP_POS_LAM * (r2 > 0 ? r2 * r2 * r2 : 1e300);
+        x[j] = 0;
+        pas[j] = 0;
+    }
+    /* Lawson-Hanson */
+    for (int it = 0; it < 3 * n; it++) {
+        double res[5];
+        for (int r = 0; r < 5; r++)
+            res[r] = b[r];
+        for (int j = 0; j < n; j++)
+            for (int r = 0; r < 5; r++)
+                res[r] -= p[j][r] * x[j];
+        int jmax = -1;
+        double gmax = 1e-12;
+        for (int j = 0; j < n; j++) {
+            g[j] = p[j][0] * res[0] + p[j][1] * res[1] + p[j][2] * res[2] + p[j][3] * res[3] + p[j][4] * res[4] -
+                   d[j] * x[j];
+            if (!pas[j] && g[j] > gmax)
+                gmax = g[j], jmax = j;
+        }
+        if (jmax < 0)
+            break;
+        pas[jmax] = 1;
+        for (int inner = 0; inner < n; inner++) {
+            if (pos_solve(n, (const double (*)[5])p, d, pas, b, z))
+                return 0;
+            double alpha = 1;
+            int jb = -1; /* the passive coefficient that reaches 0 first */
+            for (int j = 0; j < n; j++)
+                if (pas[j] && z[j] <= 0) {
+                    double t = x[j] - z[j] > 0 ? x[j] / (x[j] - z[j]) : 0;
+                    if (t < alpha || jb < 0)
+                        alpha = t, jb = j;
+                }
+            if (jb < 0) {
+                for (int j = 0; j < n; j++)
+                    x[j] = z[j];
+                break;
+            }
+            for (int j = 0; j < n; j++) {
+                x[j] += alpha * (z[j] - x[j]);
+                if (pas[j] && (j == jb || x[j] <= 0))
+                    pas[j] = 0, x[j] = 0;
+            }
+        }
+    }
+    /* a_j = s2 a_hat_j / L^2 (CPM's hat units) */
+    for (int j = 0; j < n; j++)
+        a[j] = s2 * x[j] * (iL * iL);
+    return 1;
+}
+
 /* CPM4: the CPM fit of Eqs. 16-17 over the fourth-order Taylor basis in
  * 2-D (14 terms: the 5 of CPM, then h^3/6, h^2k/2, hk^2/2, k^3/6, h^4/24,
  * h^3k/6, h^2k^2/4, hk^3/6, k^4/24), same weights w_j^2 = 1/r^6 and the

@@ -158,6 +158,11 @@ typedef struct sol_setup {
 /* A gathered neighbour: fluid particle ref >= 0, boundary particle
  * ref = -1 - b. */
 #define SOL_MAX_VALUES 3 /* quantities one MLS fit interpolates (u, v, T) */
+/* anisotropicCells: a CPM row whose negative coefficients add up to more
+ * than this share of its positive ones is made positive (on uniform
+ * lattices the share stays below 1e-3; on the graded cavities most rows of
+ * the stretched cells exceed 0.1) */
+#define SOL_POSITIVE_TAU 0.01
 typedef struct sol_work {
     size_t cap;
     union {                    /* gathered positions (stencil shift applied) */
@@ -174,6 +179,7 @@ typedef struct sol_work {
     double *pv;                /* stencil values (pressure gradient) */
     double *gv[SOL_MAX_VALUES]; /* gathered sample values (gather_values) */
     long lap_fallbacks, mls_fallbacks;
+    long positive_rows;        /* anisotropicCells: CPM rows made positive */
     ump_err err;               /* first error of this thread in a stage */
     ump_status rc;
 } sol_work;
@@ -405,8 +411,9 @@ static ump_status work_collect(sol *S, sol_stats *st, ump_err *err)
         if (st) {
             st->lap_fallbacks += (int)w->lap_fallbacks;
             st->mls_fallbacks += (int)w->mls_fallbacks;
+            st->positive_rows += (int)w->positive_rows;
         }
-        w->lap_fallbacks = w->mls_fallbacks = 0;
+        w->lap_fallbacks = w->mls_fallbacks = w->positive_rows = 0;
         if (w->rc != UMP_OK && rc == UMP_OK) {
             rc = w->rc;
             if (err)
@@ -1233,6 +1240,59 @@ static inline double mls_extent(const sol_setup *su, double e)
     return su->set.mls_support > 0 ? -su->set.mls_support * e : e;
 }
 
+/* anisotropicCells (docs/METHOD.md section 8, "Anisotropic cells"): grad p
+ * at every particle as the MLS value (Eq. 32) at its position of the cell
+ * gradients of Eq. 26 with OpenFOAM's leastSquares weights 1/|d|^2 (the
+ * gradient of Eq. 36) over the particle's cell and its N2 stencil. The
+ * MLS derivative of the centroid pressures (Eqs. 33-34) on a stencil
+ * stretched 1000:1 takes the curvature of p across the thin direction
+ * into the derivative along it (of order h_y^2/h_x): on the graded
+ * cavities it gave |grad p| of 10^3 where p is uniform along the row, and
+ * the particles next to the wall left at 5 m/s. A value fit of weighted
+ * gradients does not divide by the short offsets. The cell gradients do
+ * not see the fixed-pressure faces (Eq. 26 is over the centroids; the
+ * default gradient fits those faces too). Scratch: st->gx, st->gy (Step
+ * 10 recomputes them after its last use of this function). */
+static long particle_gradient_anisotropic(sol *S, const double *p, double *gxo, double *gyo)
+{
+    const sol_setup *su = &S->su;
+    const mesh2d *m = su->m;
+    const part_set *P = S->st.P;
+    double *cgx = S->st.gx, *cgy = S->st.gy;
+    size_t n = P->n;
+    long fb = 0;
+    lsq_gradient(su->g, p, cgx, cgy);
+#pragma omp parallel num_threads(S->nthreads) reduction(+ : fb)
+    {
+        sol_work *w = &S->work[thread_id()];
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            ump_idx c = P->cell[i];
+            double x = P->x[i], y = P->y[i];
+            int nn = 0;
+            for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
+                ump_idx q = su->st_cell[a];
+                double sx = su->st_sx ? su->st_sx[a] : 0, sy = su->st_sy ? su->st_sy[a] : 0;
+                w->h[nn] = m->cx[q] + sx - x;
+                w->k[nn++] = m->cy[q] + sy - y;
+            }
+            if (mls_weights(w->h, w->k, nn, mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), w->c0, NULL, NULL,
+                            NULL) != MLS_QUADRATIC)
+                fb++;
+            double gx = 0, gy = 0;
+            nn = 0;
+            for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++, nn++) {
+                ump_idx q = su->st_cell[a];
+                gx += w->c0[nn] * cgx[q];
+                gy += w->c0[nn] * cgy[q];
+            }
+            gxo[i] = gx;
+            gyo[i] = gy;
+        }
+    }
+    return fb;
+}
+
 /* grad p at every particle's position (P->x, P->y): the MLS derivative
  * (Eqs. 33-34) of the centroid values p of the particle's cell and its N2
  * stencil (Eq. 10's pressure gradient). Returns the count of fits that fell
@@ -1252,6 +1312,8 @@ static long particle_pressure_gradient(sol *S, const double *p, const double *pf
     const part_set *P = S->st.P;
     size_t n = P->n;
     long fb = 0;
+    if (su->set.anisotropic)
+        return particle_gradient_anisotropic(S, p, gxo, gyo);
 #pragma omp parallel num_threads(S->nthreads) reduction(+ : fb)
     {
         sol_work *w = &S->work[thread_id()];
@@ -1387,6 +1449,13 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                     continue;
                 }
             }
+            /* anisotropicCells: a CPM row whose negative coefficients
+             * exceed SOL_POSITIVE_TAU of its positive ones is replaced by
+             * the positive row closest to it (docs/METHOD.md section 8,
+             * "Anisotropic cells"): on stretched stencils CPM's row loses
+             * the maximum principle and u* overshot the lid from rest */
+            if (set->anisotropic && lp->model == LAP_CPM)
+                w->positive_rows += lap_positive_row(w->h, w->k, nn, sx, sy, SOL_POSITIVE_TAU, w->c0);
             /* L phi_i = sum_j a_j (phi_j - phi_i); boundary particles are
              * Dirichlet data (Eq. 14): their a_j phi_j moves to the RHS */
             ump_idx pos = st->rp[i], dpos = -1, *ci = st->ci;

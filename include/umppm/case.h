@@ -97,7 +97,7 @@ typedef struct case_umppm {
     long refill_k;               /* refillParticles: default 4, 1..16 */
     double mls_support;          /* mlsSupport: 2 (default) or 1..4 cell extents; 0: Eq. 35's scales */
     double p_theta;              /* pressureTheta: 0 (default) .. 0.5 */
-    int anisotropic;             /* anisotropicCells: 0 (default) or 1 */
+    int anisotropic;             /* anisotropicCells: -1 auto (default), 0 or 1 */
     double max_velocity;         /* maxVelocity: divergence bound on |U| of
                                     cells and particles; 0 (default): 100 x
                                     the case's speed scale (app.c) */

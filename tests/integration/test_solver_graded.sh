@@ -2,26 +2,26 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # test_solver_graded.sh -- stretched cells: OpenFOAM's icoFoam cavity on 8x8
 # cells graded in x (blockMesh simpleGrading), Re 10, deltaT 0.005, t = 0.5,
-# umppmFoam with UMPPM { anisotropicCells yes; } beside icoFoam on the same
-# mesh (the default, the paper's Eq. 26 and plain CPM, runs the first case
-# to the end with max |U| 25 and stops the second at t = 0.015: README,
-# "Anisotropic cells"):
-#   - simpleGrading (1000 1 1), cell aspect ratio 199: runs to the end and
-#     max |U| <= 1.05 x the lid speed (measured 0.772 with gcc -O2, 0.980
-#     in the clang ASan build; icoFoam 0.702). With the paper's plain CPM
-#     weights and unweighted LS gradient, Eq. 26, max |U| was 25. The
-#     difference to icoFoam's U is printed, not asserted: it is 0.52 (gcc)
-#     and 1.82 (clang ASan), so on this mesh rounding changes the answer
-#     at O(1), and the issue's target, 10 %, is not met (README,
-#     "Anisotropic cells");
-#   - simpleGrading (10000 1 1), aspect ratio 1707: not run wrong silently.
-#     It either finishes with max |U| <= 1.05 or is stopped by the
-#     divergence guard with the time, the cell or particle and the value
-#     named (today it is stopped at t = 0.055 with gcc, 0.43 with clang
-#     ASan).
-#   - the default on the 199:1 mesh says so before the first step: a
-#     warning names the most stretched cell (the default's answer there is
-#     wrong, max |U| 25, without diverging).
+# umppmFoam at its defaults beside icoFoam on the same mesh, both against
+# the converged flow (icoFoam on 160x160 uniform cells, deltaT 0.00025,
+# mapped onto each graded mesh by mapFields -consistent; stored in
+# tools/reference/graded_cavity_icoFoam160_t0.5). README, "Anisotropic
+# cells".
+#   - simpleGrading (1000 1 1), (10000 1 1), (100000 1 1): cell aspect
+#     ratios 199, 1 708 and 15 491. The default (anisotropicCells
+#     auto) turns the anisotropic operators on (the log says so); each run
+#     reaches t = 0.5 with max |U| <= 1.05 x the lid speed, and U is within
+#     0.60 (relative L2) of the converged flow (measured 0.30, 0.22, 0.34
+#     with gcc -O2, 0.31, 0.30, 0.51 in the clang ASan build: on the
+#     15 491:1 mesh rounding still moves it by 0.2; icoFoam on the same
+#     meshes 0.51, 0.43, 0.32). Before
+#     (the paper's operators, and the old anisotropicCells yes): max |U|
+#     25 on the first, the divergence guard at t = 0.015 / 0.005 on the
+#     others. U against icoFoam's own run on the graded mesh is printed,
+#     not asserted (the issue's 10 % is not met: 0.42, 0.31, 0.26; icoFoam
+#     is itself 30-50 % from the converged flow on these meshes);
+#   - anisotropicCells no on the 199:1 mesh: a warning names the most
+#     stretched cell before the first step.
 # Needs UMPPMFOAM and TOOLDIR (foamCompare); OpenFOAM's blockMesh, icoFoam.
 set -eu -o pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -31,6 +31,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 of_env
 ex=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam/cavity/cavity
 [ -d "$ex" ] || { echo "FAIL: $ex missing (package openfoam-examples)"; exit 1; }
+refdir=$(cd "$here/../../tools/reference/graded_cavity_icoFoam160_t0.5" && pwd)
 work=$(mktemp -d "${TMPDIR:-/tmp}/umppm-graded.XXXXXX")
 fail=0
 
@@ -38,8 +39,11 @@ fail=0
 max_speed() {
     field_values "$1" | awk '{ s = sqrt($1 * $1 + $2 * $2); if (s > m) m = s } END { printf "%.6g\n", m }'
 }
+# rel_l2 CASE_A CASE_B: relative L2 of U at t = 0.5 (foamCompare)
+rel_l2() { "$TOOLDIR/foamCompare" "$1" 0.5 "$2" 0.5 U | awk '$1 == "U" { print $4 }'; }
 
-# graded_case DIR GRADING: the tutorial cavity on 8x8 cells graded in x
+# graded_case DIR GRADING: the tutorial cavity on 8x8 cells graded in x,
+# with icoFoam's run in DIR/ico and the converged flow in DIR/ref
 graded_case() {
     cp -r "$ex" "$1"
     find "$1" -name '*.gz' -exec gzip -d {} +
@@ -47,46 +51,40 @@ graded_case() {
     sed -i "s/^deltaT .*/deltaT 0.005;/" "$1/system/controlDict"
     grep -q "simpleGrading ($2 1 1)" "$1/system/blockMeshDict" || { echo "  FAIL: could not grade the mesh"; return 1; }
     run_in "$1" blockMesh blockMesh
-}
-# with_option DIR: UMPPM { anisotropicCells yes; } (after icoFoam's copy)
-with_option() {
-    printf 'UMPPM\n{\n    anisotropicCells yes;\n}\n' >> "$1/system/fvSolution"
+    mkdir -p "$1/ico" "$1/ref/0.5"
+    cp -r "$1/0" "$1/constant" "$1/system" "$1/ico/"
+    cp -r "$1/constant" "$1/system" "$1/ref/"
+    cp "$refdir/grading$2/U" "$1/ref/0.5/U"
+    run_in "$1/ico" icoFoam icoFoam
 }
 
-g=$work/ar199
-graded_case "$g" 1000
-mkdir -p "$g/ico" && cp -r "$g/0" "$g/constant" "$g/system" "$g/ico/"
-run_in "$g/ico" icoFoam icoFoam || fail=1
-d=$work/ar199-default
-cp -r "$g" "$d" && rm -rf "$d/ico"
+for spec in 1000:199 10000:1708 100000:15491; do
+    g=${spec%%:*} ar=${spec#*:}
+    c=$work/g$g
+    graded_case "$c" "$g" || { fail=1; continue; }
+    if ! "$UMPPMFOAM" -case "$c" > "$c/log.umppmFoam" 2>&1; then
+        echo "  FAIL aspect ratio $ar: umppmFoam failed: $(grep -m1 'FATAL' "$c/log.umppmFoam" | cut -c1-200)"
+        fail=1
+        continue
+    fi
+    grep -q "is stretched $ar:1 .*anisotropicCells on (auto" "$c/log.umppmFoam" ||
+        { echo "  FAIL aspect ratio $ar: the log does not say that anisotropicCells auto is on"; fail=1; }
+    echo "aspect ratio $ar: max |U| $(max_speed "$c/0.5/U") (icoFoam $(max_speed "$c/ico/0.5/U")); U vs converged:" \
+        "umppmFoam $(rel_l2 "$c" "$c/ref"), icoFoam $(rel_l2 "$c/ico" "$c/ref"); umppmFoam vs icoFoam $(rel_l2 "$c" "$c/ico")" \
+        "(not asserted; the issue's target is 0.1)"
+    check_range "aspect ratio $ar: max |U| / lid speed" "$(max_speed "$c/0.5/U")" 0 1.05
+    check_below "aspect ratio $ar: U vs the converged flow (rel. L2)" "$(rel_l2 "$c" "$c/ref")" 0.60
+done
+
+d=$work/no
+graded_case "$d" 1000
+printf 'UMPPM\n{\n    anisotropicCells no;\n}\n' >> "$d/system/fvSolution"
 sed -i 's/^endTime .*/endTime 0.005;/' "$d/system/controlDict"
 if "$UMPPMFOAM" -case "$d" > "$d/log.umppmFoam" 2>&1 &&
     grep -q 'umppmFoam Warning: cell [0-9]* at ([^)]*) is stretched 199:1' "$d/log.umppmFoam"; then
-    echo "  ok   default on the 199:1 mesh: $(grep -o 'cell [0-9]* at ([^)]*) is stretched 199:1' "$d/log.umppmFoam")"
+    echo "  ok   anisotropicCells no on the 199:1 mesh: $(grep -o 'cell [0-9]* at ([^)]*) is stretched 199:1' "$d/log.umppmFoam")"
 else
-    echo "  FAIL default on the 199:1 mesh: no stretched-cell warning"; tail -3 "$d/log.umppmFoam"; fail=1
-fi
-with_option "$g"
-if "$UMPPMFOAM" -case "$g" > "$g/log.umppmFoam" 2>&1; then
-    echo "aspect ratio 199: max |U| $(max_speed "$g/0.5/U") (icoFoam $(max_speed "$g/ico/0.5/U"))"
-    check_range "aspect ratio 199: max |U| / lid speed" "$(max_speed "$g/0.5/U")" 0 1.05
-    rel=$("$TOOLDIR/foamCompare" "$g" 0.5 "$g/ico" 0.5 U | awk '$1 == "U" { print $4 }')
-    echo "aspect ratio 199: U vs icoFoam, relative L2 = $rel (not asserted; the target is 0.1)"
-else
-    echo "  FAIL aspect ratio 199: umppmFoam failed"; tail -2 "$g/log.umppmFoam"; fail=1
-fi
-
-h=$work/ar1707
-graded_case "$h" 10000
-with_option "$h"
-if "$UMPPMFOAM" -case "$h" > "$h/log.umppmFoam" 2>&1; then
-    check_range "aspect ratio 1707: max |U| / lid speed" "$(max_speed "$h/0.5/U")" 0 1.05
-else
-    msg=$(grep 'FATAL ERROR' "$h/log.umppmFoam" || true)
-    echo "aspect ratio 1707: ${msg:0:200}"
-    printf '%s' "$msg" | grep -Eq 'diverged at time [0-9.e+-]+: \|U\| = [0-9.e+-]+ (in cell [0-9]+|of particle [0-9]+) at \([^)]*\) exceeds the bound' ||
-        { echo "  FAIL aspect ratio 1707: failed without the divergence guard's message"; fail=1; }
-    echo "  ok   aspect ratio 1707: stopped by the divergence guard, not run wrong silently"
+    echo "  FAIL anisotropicCells no on the 199:1 mesh: no stretched-cell warning"; tail -3 "$d/log.umppmFoam"; fail=1
 fi
 
 [ "$fail" = 0 ] || { echo "work dir kept: $work"; exit 1; }
