@@ -43,7 +43,7 @@ elif [ -n "$deltaT" ]; then steprule="fixed deltaT = $deltaT"
 else steprule="adjustTimeStep maxCo = $maxCo"; fi
 printf "# Taylor-Green Re=100 %s %s, %s, endTime=%s\n" "$variant" "$lap" "$steprule" "$endTime"
 printf "# U = %s, UMPPM { %s }\n" "$U0" "$extra"
-printf "%6s %7s %6s %8s %8s %7s %9s %9s %9s %9s %9s\n" N_m particles steps seconds us/p-step RSS_MiB L2rel decay Eq41 Eq42 amp
+printf "%6s %7s %6s %8s %8s %7s %9s %9s %9s %9s %9s %9s\n" N_m particles steps seconds us/p-step RSS_MiB L2rel decay Eq41 Eq42 amp pL2rel
 prev=""
 for n in "$@"; do
     c=$work/tg$n-$variant
@@ -84,9 +84,9 @@ FS
     last=$(ls -d "$c"/[0-9]* | sed 's|.*/||' | sort -g | tail -1)
     steps=$(grep -c '^Time = ' "$c/log")
     np=$(grep -o 'Particles: [0-9]*' "$c/log" | awk '{ s += $2; k++ } END { print int(s / k) }')
-    read -r _ l2 _ dec _ e41 _ e42 _ amp < <(python3 "$top/tools/taylorGreenError.py" "$c" "$last")
+    read -r _ l2 _ dec _ e41 _ e42 _ amp _ pl2 _ < <(python3 "$top/tools/taylorGreenError.py" "$c" "$last")
     us=$(awk -v s="$sec" -v p="$np" -v k="$steps" 'BEGIN { printf "%.2f", 1e6 * s / (p * k) }')
-    printf "%6d %7d %6d %8.2f %8s %7.0f %9.4g %9.4g %9.4g %9.4g %+9.4f\n" $((4 * n * n)) "$np" "$steps" "$sec" "$us" "$rss" "$l2" "$dec" "$e41" "$e42" "$amp"
+    printf "%6d %7d %6d %8.2f %8s %7.0f %9.4g %9.4g %9.4g %9.4g %+9.4f %9s\n" $((4 * n * n)) "$np" "$steps" "$sec" "$us" "$rss" "$l2" "$dec" "$e41" "$e42" "$amp" "$pl2"
     if [ -n "$prev" ]; then
         set -- $prev
         awk -v n0="$1" -v n1="$n" -v a0="$2" -v a1="$l2" -v b0="$3" -v b1="$e42" -v c0="$4" -v c1="$dec" 'BEGIN {

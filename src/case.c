@@ -498,8 +498,7 @@ static const case_option umppm_options[] = {
      "previous pressure gradient share applied at r^n; 0.5: trapezoidal",
      UM_FIELD(p_theta)},
     {"anisotropicCells", CASE_OPT_CHOICE, "auto", -1, aniso_words, aniso_values, UM_NORANGE,
-     "stretched cells: LS weights 1/|d|^2, CPM in cell-extent units, positive rows, "
-     "particle gradient from cell gradients; auto: yes if a cell is stretched beyond 20:1",
+     "stretched-cell operators; auto: yes if a cell is stretched beyond 20:1",
      UM_FIELD(anisotropic)},
     {"buoyancy", CASE_OPT_CHOICE, "balanced", 1, buoyancy_words, buoyancy_values, UM_NORANGE,
      "buoyant: force in the predictor less its balancing pressure",
