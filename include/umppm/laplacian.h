@@ -79,7 +79,9 @@ ump_status lap_coeffs_metric(const lap_params *p, const double *h, const double 
  * h, k, metric sx, sy) add up to more than tau times the positive ones,
  * a is replaced by the non-negative row closest to CPM's consistency
  * conditions (exact for quadratics where a positive such row exists), so
- * the implicit predictor keeps a maximum principle. Returns 1 if a was
+ * the implicit predictor keeps a maximum principle; between tau and
+ * 2 tau the row is blended from a to that row (continuous in the
+ * offsets; tau <= 0: always the positive row). Returns 1 if a was
  * replaced, 0 if kept (also for n > 256 or no finite offsets). No
  * allocation. */
 int lap_positive_row(const double *h, const double *k, int n, double sx, double sy, double tau, double *a);
