@@ -1240,63 +1240,6 @@ static inline double mls_extent(const sol_setup *su, double e)
     return su->set.mls_support > 0 ? -su->set.mls_support * e : e;
 }
 
-/* anisotropicCells (docs/METHOD.md section 8, "Anisotropic cells"): grad p
- * at every particle as the MLS value (Eq. 32) at its position of the cell
- * gradients of Eq. 26 with OpenFOAM's leastSquares weights 1/|d|^2 (the
- * gradient of Eq. 36) over the particle's cell and its N2 stencil. The
- * MLS derivative of the centroid pressures (Eqs. 33-34) on a stencil
- * stretched 1000:1 takes the curvature of p across the thin direction
- * into the derivative along it (of order h_y^2/h_x): on the graded
- * cavities it gave |grad p| of 10^3 where p is uniform along the row, and
- * the particles next to the wall left at 5 m/s. A value fit of weighted
- * gradients does not divide by the short offsets. The cell gradients do
- * not see the fixed-pressure faces (Eq. 26 is over the centroids; the
- * default gradient fits those faces too). Scratch: st->gx, st->gy (Step
- * 10 recomputes them after its last use of this function). */
-static long particle_gradient_anisotropic(sol *S, const double *p, double *gxo, double *gyo)
-{
-    const sol_setup *su = &S->su;
-    const mesh2d *m = su->m;
-    const part_set *P = S->st.P;
-    double *cgx = S->st.gx, *cgy = S->st.gy;
-    size_t n = P->n;
-    long fb = 0;
-    lsq_gradient(su->g, p, cgx, cgy);
-#pragma omp parallel num_threads(S->nthreads) reduction(+ : fb)
-    {
-        sol_work *w = &S->work[thread_id()];
-#pragma omp for schedule(static)
-        for (size_t i = 0; i < n; i++) {
-            ump_idx c = P->cell[i];
-            double x = P->x[i], y = P->y[i];
-            int nn = 0;
-            for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
-                ump_idx q = su->st_cell[a];
-                double sx = su->st_sx ? su->st_sx[a] : 0, sy = su->st_sy ? su->st_sy[a] : 0;
-                w->h[nn] = m->cx[q] + sx - x;
-                w->k[nn++] = m->cy[q] + sy - y;
-            }
-            if (mls_weights(w->h, w->k, nn, mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), w->c0, NULL, NULL,
-                            NULL) != MLS_QUADRATIC)
-                fb++;
-            double gx = 0, gy = 0;
-            nn = 0;
-            for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++, nn++) {
-                ump_idx q = su->st_cell[a];
-                gx += w->c0[nn] * cgx[q];
-                gy += w->c0[nn] * cgy[q];
-            }
-            gxo[i] = gx;
-            gyo[i] = gy;
-        }
-    }
-    return fb;
-}
-
-/* grad p at every particle's position (P->x, P->y): the MLS derivative
- * (Eqs. 33-34) of the centroid values p of the particle's cell and its N2
- * stencil (Eq. 10's pressure gradient). Returns the count of fits that fell
- * back from the quadratic basis. */
 /* grad p at every particle at its position (Eq. 10's gradient): the MLS
  * derivative (Eqs. 33-34) of the centroid pressures p of the particle's
  * cell and its N2 stencil, and of the prescribed pressures pfv at the
@@ -1304,7 +1247,19 @@ static long particle_gradient_anisotropic(sol *S, const double *p, double *gxo, 
  * "Fixed pressures in the particles' gradient"): the PPE's face gradient
  * at such a face is (p_f - p_A')/|A'f|, and a gradient from the centroids
  * alone extrapolates past the face and misses it, so the particles next
- * to an outlet were corrected by another pressure than the mesh. */
+ * to an outlet were corrected by another pressure than the mesh.
+ * anisotropicCells (docs/METHOD.md section 8, "Anisotropic cells"): the
+ * MLS value (Eq. 32) at the particle of the cell gradients of Eq. 26 with
+ * OpenFOAM's leastSquares weights 1/|d|^2 (the gradient of Eq. 36) over
+ * the same stencil, without the face pressures (Eq. 26 is over the
+ * centroids). On a stencil stretched 1000:1 the MLS derivative takes the
+ * curvature of p across the thin direction into the derivative along it
+ * (of order h_y^2/h_x): on the graded cavities |grad p| of 10^3 where p is
+ * uniform along the row, and the particles next to the wall left at 5 m/s;
+ * a value fit of weighted gradients does not divide by the short offsets.
+ * Its scratch is st->gx, st->gy (Step 10 recomputes them after its last
+ * use of this function). Returns the count of fits that fell back from
+ * the quadratic basis. */
 static long particle_pressure_gradient(sol *S, const double *p, const double *pfv, double *gxo, double *gyo)
 {
     const sol_setup *su = &S->su;
@@ -1312,8 +1267,10 @@ static long particle_pressure_gradient(sol *S, const double *p, const double *pf
     const part_set *P = S->st.P;
     size_t n = P->n;
     long fb = 0;
-    if (su->set.anisotropic)
-        return particle_gradient_anisotropic(S, p, gxo, gyo);
+    int aniso = su->set.anisotropic;
+    double *cgx = S->st.gx, *cgy = S->st.gy;
+    if (aniso)
+        lsq_gradient(su->g, p, cgx, cgy);
 #pragma omp parallel num_threads(S->nthreads) reduction(+ : fb)
     {
         sol_work *w = &S->work[thread_id()];
@@ -1322,11 +1279,18 @@ static long particle_pressure_gradient(sol *S, const double *p, const double *pf
             ump_idx c = P->cell[i];
             double x = P->x[i], y = P->y[i];
             int nn = 0;
+            /* samples: (h, k) offsets; pv the pressures, or with aniso
+             * the cell gradients in pv (x) and cy (y) */
             for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
                 ump_idx q = su->st_cell[a];
                 double sx = su->st_sx ? su->st_sx[a] : 0, sy = su->st_sy ? su->st_sy[a] : 0;
                 w->h[nn] = m->cx[q] + sx - x;
                 w->k[nn] = m->cy[q] + sy - y;
+                if (aniso) {
+                    w->pv[nn] = cgx[q];
+                    w->cy[nn++] = cgy[q];
+                    continue;
+                }
                 w->pv[nn++] = p[q];
                 for (ump_idx d = su->pd_off[q]; d < su->pd_off[q + 1]; d++) {
                     ump_idx f = su->pd_face[d];
@@ -1335,10 +1299,21 @@ static long particle_pressure_gradient(sol *S, const double *p, const double *pf
                     w->pv[nn++] = pfv[f];
                 }
             }
-            if (mls_gradient(w->h, w->k, w->pv, nn, mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), &gxo[i],
-                             &gyo[i], NULL) !=
-                MLS_QUADRATIC)
+            double ex = mls_extent(su, m->dx[c]), ey = mls_extent(su, m->dy[c]);
+            if (!aniso) {
+                if (mls_gradient(w->h, w->k, w->pv, nn, ex, ey, &gxo[i], &gyo[i], NULL) != MLS_QUADRATIC)
+                    fb++;
+                continue;
+            }
+            if (mls_weights(w->h, w->k, nn, ex, ey, w->c0, NULL, NULL, NULL) != MLS_QUADRATIC)
                 fb++;
+            double gx = 0, gy = 0;
+            for (int j = 0; j < nn; j++) {
+                gx += w->c0[j] * w->pv[j];
+                gy += w->c0[j] * w->cy[j];
+            }
+            gxo[i] = gx;
+            gyo[i] = gy;
         }
     }
     return fb;
