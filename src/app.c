@@ -118,7 +118,7 @@ static void report_stretched(const mesh2d *m, int anisotropic, int automatic)
         return;
     if (anisotropic)
         printf("Stretched cells: cell %ld at (%g %g) is stretched %.0f:1 (bounding box %g x %g); "
-               "anisotropicCells %s: LS weights 1/|d|^2, CPM in cell units, positive rows, particle "
+               "anisotropicCells %s: LS weights 1/|d|^2, CPM in cell units, particle "
                "gradient from the cell gradients (README, \"Anisotropic cells\")\n\n",
                (long)wc, m->cx[wc], m->cy[wc], worst, m->dx[wc], m->dy[wc],
                automatic ? "on (auto: above 20:1)" : "yes");
@@ -181,6 +181,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->p_theta = a->um.p_theta;
     /* anisotropicCells auto: on where a cell is stretched beyond
      * APP_ASPECT_WARN (README, "Anisotropic cells") */
+    s->positive = a->um.positive_rows;
     ump_idx wc;
     s->anisotropic = a->um.anisotropic < 0 ? most_stretched(a->m, &wc) > APP_ASPECT_WARN : a->um.anisotropic;
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
@@ -1293,7 +1294,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
             printf("Fallbacks: %d particle Laplacians (MPS), %d MLS fits (linear/Shepard)\n",
                    st.lap_fallbacks, st.mls_fallbacks);
         if (st.positive_rows)
-            printf("Anisotropic cells: %d particle Laplacians made positive\n", st.positive_rows);
+            printf("Positive rows: %d particle Laplacians made positive\n", st.positive_rows);
         /* OpenFOAM's solver-line form (foamLog parses it): the direct solve,
          * factorized once, is one "iteration" */
         printf("%s:  Solving for %s, Initial residual = %g, Final residual = %g, No Iterations 1\n",

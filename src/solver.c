@@ -158,10 +158,10 @@ typedef struct sol_setup {
 /* A gathered neighbour: fluid particle ref >= 0, boundary particle
  * ref = -1 - b. */
 #define SOL_MAX_VALUES 3 /* quantities one MLS fit interpolates (u, v, T) */
-/* anisotropicCells: a CPM row whose negative coefficients add up to more
- * than this share of its positive ones is made positive (on uniform
- * lattices the share stays below 1e-3; on the graded cavities most rows of
- * the stretched cells exceed 0.1) */
+/* positiveRows: a CPM row whose negative coefficients add up to more than
+ * this share of its positive ones is blended into the positive row (fully
+ * at twice the share; on uniform lattices about one row in 1 600 exceeds
+ * it, on graded meshes one in five, on the stretched cavities most rows) */
 #define SOL_POSITIVE_TAU 0.01
 typedef struct sol_work {
     size_t cap;
@@ -179,7 +179,7 @@ typedef struct sol_work {
     double *pv;                /* stencil values (pressure gradient) */
     double *gv[SOL_MAX_VALUES]; /* gathered sample values (gather_values) */
     long lap_fallbacks, mls_fallbacks;
-    long positive_rows;        /* anisotropicCells: CPM rows made positive */
+    long positive_rows;        /* positiveRows: CPM rows made positive */
     ump_err err;               /* first error of this thread in a stage */
     ump_status rc;
 } sol_work;
@@ -254,6 +254,7 @@ void sol_default_settings(sol_settings *s)
     s->refill_k = 4;
     s->mls_support = 2;
     s->p_theta = 0;
+    s->positive = 1;
     s->anisotropic = 0;
     s->t_start = 0;
 }
@@ -1424,12 +1425,14 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                     continue;
                 }
             }
-            /* anisotropicCells: a CPM row whose negative coefficients
-             * exceed SOL_POSITIVE_TAU of its positive ones is replaced by
-             * the positive row closest to it (docs/METHOD.md section 8,
-             * "Anisotropic cells"): on stretched stencils CPM's row loses
-             * the maximum principle and u* overshot the lid from rest */
-            if (set->anisotropic && lp->model == LAP_CPM)
+            /* positiveRows: a CPM row whose negative coefficients exceed
+             * SOL_POSITIVE_TAU of its positive ones is replaced by the
+             * positive row closest to it (docs/METHOD.md section 8,
+             * "Positive rows"): CPM's row has no maximum principle; on
+             * stretched stencils u* overshot the lid from rest, and on a
+             * cavity graded only 10:1 toward its walls particles reached
+             * 84 times the lid speed at a small step */
+            if (set->positive && lp->model == LAP_CPM)
                 w->positive_rows += lap_positive_row(w->h, w->k, nn, sx, sy, SOL_POSITIVE_TAU, w->c0);
             /* L phi_i = sum_j a_j (phi_j - phi_i); boundary particles are
              * Dirichlet data (Eq. 14): their a_j phi_j moves to the RHS */

@@ -78,10 +78,14 @@ typedef struct sol_settings {
                                 step's pressure gradient applied at r^n, the rest
                                 at r* (default 0: all at r*, [NSH16] Eq. 10; 1/2:
                                 the trapezoidal rule along the path) */
+    int positive;            /* positiveRows: a CPM row whose negative
+                                coefficients exceed 1 % of its positive ones is
+                                blended into the closest non-negative row
+                                (lap_positive_row; default 1; 0: [NSH16]'s CPM) */
     int anisotropic;         /* anisotropicCells: LS gradient weights 1/|d|^2,
-                                CPM in the metric of the cell extents, positive
-                                rows, the particles' pressure gradient from the
-                                cell gradients (default 0: Eq. 26, plain CPM,
+                                CPM in the metric of the cell extents, the
+                                particles' pressure gradient from the cell
+                                gradients (default 0: Eq. 26, plain CPM,
                                 Eqs. 33-34; the application turns it on for
                                 meshes stretched beyond 20:1) */
     int balanced;            /* buoyant: the predictor carries b - grad pi_b, pi_b the
@@ -116,8 +120,8 @@ typedef struct sol_stats {
     int p_written;               /* this step computed the pressure written (sol_cell_p) */
     int lap_fallbacks;           /* particles whose CPM matrix was singular */
     int mls_fallbacks;           /* MLS fits that fell back to linear/Shepard */
-    int positive_rows;           /* anisotropicCells: CPM rows replaced by
-                                    positive rows (lap_positive_row) */
+    int positive_rows;           /* positiveRows: CPM rows blended into or
+                                    replaced by positive rows (lap_positive_row) */
     double cont_local, cont_global, cont_max; /* continuity after correction:
                                     dt-weighted as icoFoam's continuityErrs,
                                     and the max |sum_f flux| / area */
