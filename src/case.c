@@ -498,7 +498,7 @@ static const case_option umppm_options[] = {
      "previous pressure gradient share applied at r^n; 0.5: trapezoidal",
      UM_FIELD(p_theta)},
     {"positiveRows", CASE_OPT_BOOL, "yes", 1, NULL, NULL, UM_NORANGE,
-     "CPM rows with negative coefficients made positive; no: the paper's",
+     "CPM rows that lose diagonal dominance made positive; no: the paper's CPM",
      UM_FIELD(positive_rows)},
     {"anisotropicCells", CASE_OPT_CHOICE, "auto", -1, aniso_words, aniso_values, UM_NORANGE,
      "stretched-cell operators; auto: yes if a cell is stretched beyond 20:1",

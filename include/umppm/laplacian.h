@@ -74,9 +74,10 @@ ump_status lap_coeffs(const lap_params *p, const double *h, const double *k, int
 ump_status lap_coeffs_metric(const lap_params *p, const double *h, const double *k, int n, double l0,
                              double sx, double sy, double *a, ump_err *err);
 
-/* Positive rows (docs/METHOD.md section 8, "Anisotropic cells"): when the
- * negative coefficients of the row a [n] (from lap_coeffs_metric, offsets
- * h, k, metric sx, sy) add up to more than tau times the positive ones,
+/* Positive rows (docs/METHOD.md section 8, "Anisotropic cells", "Positive
+ * rows"): when the negative coefficients of the row a [n] (from
+ * lap_coeffs_metric, offsets h, k, metric sx, sy) add up to more than tau
+ * times the positive ones,
  * a is replaced by the non-negative row closest to CPM's consistency
  * conditions (exact for quadratics where a positive such row exists), so
  * the implicit predictor keeps a maximum principle; between tau and

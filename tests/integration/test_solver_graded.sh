@@ -27,9 +27,9 @@
 #     off), deltaT 0.0005, t = 0.1 written every 0.005: max |U| <= 1.05 x
 #     the lid speed at every written time, and the largest Courant number
 #     of the run within 1.5 x icoFoam's on the same mesh and step
-#     (measured 0.957 and 0.159, icoFoam 0.179). With positiveRows no (the
-#     paper's CPM) max |U| is 6.9 and the Courant number 3.3: CPM rows with
-#     negative coefficients (README, "Positive rows").
+#     (measured 0.958 and 0.159, icoFoam 0.179). With positiveRows no (the
+#     paper's CPM) max |U| is 6.9 and the Courant number 3.3: CPM rows
+#     that lost the predictor's diagonal dominance (README, "Positive rows").
 # Needs UMPPMFOAM and TOOLDIR (foamCompare); OpenFOAM's blockMesh, icoFoam.
 set -eu -o pipefail
 here=$(cd "$(dirname "$0")" && pwd)
