@@ -182,6 +182,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     /* anisotropicCells auto: on where a cell is stretched beyond
      * APP_ASPECT_WARN (README, "Anisotropic cells") */
     s->positive = a->um.positive_rows;
+    s->bounded_fits = a->um.bounded_fits;
     ump_idx wc;
     s->anisotropic = a->um.anisotropic < 0 ? most_stretched(a->m, &wc) > APP_ASPECT_WARN : a->um.anisotropic;
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
@@ -1295,6 +1296,8 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
                    st.lap_fallbacks, st.mls_fallbacks);
         if (st.positive_rows)
             printf("Positive rows: %d particle Laplacians made positive\n", st.positive_rows);
+        if (st.bounded_values)
+            printf("Bounded fits: %d interpolated values limited to their samples' range\n", st.bounded_values);
         /* OpenFOAM's solver-line form (foamLog parses it): the direct solve,
          * factorized once, is one "iteration" */
         printf("%s:  Solving for %s, Initial residual = %g, Final residual = %g, No Iterations 1\n",

@@ -99,6 +99,7 @@ typedef struct case_umppm {
     double p_theta;              /* pressureTheta: 0 (default) .. 0.5 */
     int anisotropic;             /* anisotropicCells: -1 auto (default), 0 or 1 */
     int positive_rows;           /* positiveRows: default 1 */
+    int bounded_fits;            /* boundedFits: default 1 */
     double max_velocity;         /* maxVelocity: divergence bound on |U| of
                                     cells and particles; 0 (default): 100 x
                                     the case's speed scale (app.c) */

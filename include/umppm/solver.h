@@ -88,6 +88,10 @@ typedef struct sol_settings {
                                 gradients (default 0: Eq. 26, plain CPM,
                                 Eqs. 33-34; the application turns it on for
                                 meshes stretched beyond 20:1) */
+    int bounded_fits;        /* boundedFits: an MLS value fit or a carried refill
+                                is kept within the range of its samples widened
+                                by SOL_FIT_MARGIN of it (default 1; docs/METHOD.md
+                                section 8, "Bounded fits"); 0: the fits as they come */
     int balanced;            /* buoyant: the predictor carries b - grad pi_b, pi_b the
                                 pressure that balances the buoyancy b (solver.c
                                 balance_buoyancy); 0: b alone, as [NSH16] Eq. 14 */
@@ -120,6 +124,7 @@ typedef struct sol_stats {
     int p_written;               /* this step computed the pressure written (sol_cell_p) */
     int lap_fallbacks;           /* particles whose CPM matrix was singular */
     int mls_fallbacks;           /* MLS fits that fell back to linear/Shepard */
+    int bounded_values;          /* boundedFits: fitted values limited */
     int positive_rows;           /* positiveRows: CPM rows blended into or
                                     replaced by positive rows (lap_positive_row) */
     double cont_local, cont_global, cont_max; /* continuity after correction:

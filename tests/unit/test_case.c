@@ -568,6 +568,7 @@ static void assert_umppm_equal(const case_umppm *a, const case_umppm *b)
     assert_int_equal(a->sort_interval, b->sort_interval);
     TU_CLOSE(a->max_velocity, b->max_velocity, 0);
     assert_int_equal(a->positive_rows, b->positive_rows);
+    assert_int_equal(a->bounded_fits, b->bounded_fits);
 }
 
 /* The table itself: keys unique, field sizes match the types, defaults are
@@ -577,7 +578,7 @@ static void test_umppm_table(void **state)
     (void)state;
     size_t n;
     const case_option *t = case_umppm_options(&n);
-    assert_int_equal(n, 19);
+    assert_int_equal(n, 20);
     for (size_t i = 0; i < n; i++) {
         const case_option *o = &t[i];
         assert_non_null(o->key);
@@ -660,6 +661,7 @@ static void test_umppm_defaults(void **state)
     assert_string_equal(def.cloud_name, "umppmCloud");
     assert_int_equal(def.sort_interval, 1);
     assert_int_equal(def.positive_rows, 1);
+    assert_int_equal(def.bounded_fits, 1);
 
     /* no UMPPM, an empty one, and every default written out from the table */
     write2(d, "system/fvSolution", HDR, "PISO { nCorrectors 2; }\n");
@@ -712,7 +714,8 @@ static void test_umppm_values(void **state)
     ump_err err;
     write_umppm(d, "    variant UMPPM; alpha 0.05; laplacian IPS; reFactor 2.5; writeQuality yes;\n"
                    "    ppeSolver KLU; predictorSolver { preconditioner ILU0; tolerance 1e-8; maxIter 50; }\n"
-                   "    cloudName myCloud; sortInterval 0; positiveRows no;\n");
+                   "    cloudName myCloud; sortInterval 0; positiveRows no;\n"
+                   "    boundedFits off;\n");
     if (case_read_umppm(d, &u, &err) != UMP_OK)
         fail_msg("%s", err.msg);
     assert_int_equal(u.variant_star, 0);
@@ -727,6 +730,7 @@ static void test_umppm_values(void **state)
     assert_string_equal(u.cloud_name, "myCloud");
     assert_int_equal(u.sort_interval, 0);
     assert_int_equal(u.positive_rows, 0);
+    assert_int_equal(u.bounded_fits, 0);
     /* boundary and special values that are allowed */
     struct { const char *key, *value; } ok[] = {
         {"variant", "\"UMPPM*\""}, {"variant", "UMPPM*"}, {"variant", "UMPPMstar"}, {"reFactor", "0"}, {"reFactor", "1"},
