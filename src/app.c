@@ -179,10 +179,10 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->refill_k = (int)a->um.refill_k;
     s->mls_support = a->um.mls_support;
     s->p_theta = a->um.p_theta;
-    /* anisotropicCells auto: on where a cell is stretched beyond
-     * APP_ASPECT_WARN (README, "Anisotropic cells") */
     s->positive = a->um.positive_rows;
     s->bounded_fits = a->um.bounded_fits;
+    /* anisotropicCells auto: on where a cell is stretched beyond
+     * APP_ASPECT_WARN (README, "Anisotropic cells") */
     ump_idx wc;
     s->anisotropic = a->um.anisotropic < 0 ? most_stretched(a->m, &wc) > APP_ASPECT_WARN : a->um.anisotropic;
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;

@@ -1494,7 +1494,8 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
             if (set->positive && lp->model == LAP_CPM) {
                 double th = set->anisotropic ? 1 : dominance_weight(w->c0, nn, dnu > dkap ? dnu : dkap);
                 if (th > 0) {
-                    memcpy(w->cx, w->c0, (size_t)nn * sizeof *w->c0);
+                    if (th < 1) /* CPM's row, for the blend below */
+                        memcpy(w->cx, w->c0, (size_t)nn * sizeof *w->c0);
                     int r = lap_positive_row(w->h, w->k, nn, sx, sy, SOL_POSITIVE_TAU, w->c0);
                     if (r && th < 1)
                         for (int j = 0; j < nn; j++)

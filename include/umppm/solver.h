@@ -78,10 +78,12 @@ typedef struct sol_settings {
                                 step's pressure gradient applied at r^n, the rest
                                 at r* (default 0: all at r*, [NSH16] Eq. 10; 1/2:
                                 the trapezoidal rule along the path) */
-    int positive;            /* positiveRows: a CPM row whose negative
-                                coefficients exceed 1 % of its positive ones is
-                                blended into the closest non-negative row
-                                (lap_positive_row; default 1; 0: [NSH16]'s CPM) */
+    int positive;            /* positiveRows: a CPM row whose implicit row loses
+                                its diagonal dominance (2 dt nu sum max(-a_j, 0)
+                                > 1; with anisotropic, any row more than 1 %
+                                negative) is blended into the closest
+                                non-negative row (lap_positive_row; default 1;
+                                0: [NSH16]'s CPM) */
     int anisotropic;         /* anisotropicCells: LS gradient weights 1/|d|^2,
                                 CPM in the metric of the cell extents, the
                                 particles' pressure gradient from the cell
