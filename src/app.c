@@ -72,6 +72,8 @@ typedef struct app {
     double *fo_val;                 /* [3 * FOB_MAX_FIELDS * fo_cap] */
     size_t fo_cap;                  /* the largest function-object patch */
     ump_idx p_ref_point_cell;       /* the cell holding pRefPoint, if given */
+    double aspect;                  /* the most stretched cell's aspect ratio ... */
+    ump_idx aspect_cell;            /* ... and that cell (most_stretched, once) */
     char ddt[128];                  /* the ddt scheme of U (system/fvSchemes) */
     char **written;          /* purgeWrite bookkeeping */
     int nwritten;
@@ -108,12 +110,11 @@ static double most_stretched(const mesh2d *m, ump_idx *wc)
     return worst;
 }
 
-/* Said once, before the first step, with the worst cell: what the
- * stretched cells get (anisotropic: 1 on, 0 off; automatic: by auto). */
-static void report_stretched(const mesh2d *m, int anisotropic, int automatic)
+/* Said once, before the first step, with the worst cell (worst, wc from
+ * most_stretched): what the stretched cells get (anisotropic: 1 on, 0 off;
+ * automatic: by auto). */
+static void report_stretched(const mesh2d *m, double worst, ump_idx wc, int anisotropic, int automatic)
 {
-    ump_idx wc;
-    double worst = most_stretched(m, &wc);
     if (!(worst > APP_ASPECT_WARN))
         return;
     if (anisotropic)
@@ -183,8 +184,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->bounded_fits = a->um.bounded_fits;
     /* anisotropicCells auto: on where a cell is stretched beyond
      * APP_ASPECT_WARN (README, "Anisotropic cells") */
-    ump_idx wc;
-    s->anisotropic = a->um.anisotropic < 0 ? most_stretched(a->m, &wc) > APP_ASPECT_WARN : a->um.anisotropic;
+    s->anisotropic = a->um.anisotropic < 0 ? a->aspect > APP_ASPECT_WARN : a->um.anisotropic;
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
     s->p_ref_value = a->so.p_ref_value;
     if (a->bu.on) {
@@ -1186,6 +1186,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     printf("Create mesh for time = %s\n\n", tname);
     if ((rc = pmesh_read(pmdir, &a.pm, err)) != UMP_OK || (rc = mesh_build(a.pm, &a.m, err)) != UMP_OK)
         goto done;
+    a.aspect = most_stretched(a.m, &a.aspect_cell);
     printf("Reading transportProperties\n\n");
     if ((rc = read_settings(&a, err)) != UMP_OK)
         goto done;
@@ -1227,7 +1228,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         goto done;
     printf("Pressure mesh: %ld cells; PPE matrix assembled and factorized once (%.3g s); "
            "%zu particles\n\n", (long)a.m->ncells, wall_seconds() - tb, sol_particles(a.S)->n);
-    report_stretched(a.m, s.anisotropic, a.um.anisotropic < 0);
+    report_stretched(a.m, a.aspect, a.aspect_cell, s.anisotropic, a.um.anisotropic < 0);
 
     rt_time t;
     rt_init(&t, &a.ctl, t0, tname);

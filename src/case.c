@@ -444,8 +444,9 @@ static const char *const pc_words[] = {"ILU0", "Jacobi", "none", NULL};
 static const char *const buoyancy_words[] = {"source", "balanced", NULL};
 static const int buoyancy_values[] = {0, 1};
 /* anisotropicCells: auto (-1, decided by the mesh, app.c) or an OpenFOAM Switch */
-static const char *const aniso_words[] = {"auto", "yes", "no", "on", "off", "true", "false", NULL};
-static const int aniso_values[] = {-1, 1, 0, 1, 0, 1, 0};
+static const char *const aniso_words[] = {"auto", "yes", "no", "on", "off", "true", "false",
+                                          "y", "n", "t", "f", "none", NULL};
+static const int aniso_values[] = {-1, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 0};
 static const char *const refill_words[] = {"auto", "centroid", "carried", NULL};
 static const int refill_values[] = {-1, 0, 1};
 
@@ -549,10 +550,28 @@ const char *case_option_allowed(const case_option *o, char *buf, size_t len)
     buf[0] = '\0';
     const case_opt_range *r = &o->range;
     switch (o->type) {
-    case CASE_OPT_CHOICE:
+    case CASE_OPT_CHOICE: {
+        /* a choice that also takes an OpenFOAM Switch (its words hold
+         * "yes": anisotropicCells auto or yes/no) lists its own words and
+         * "or yes/no", as a CASE_OPT_BOOL says "yes/no" for all of them */
+        static const char *const sw[] = {"yes", "no", "on", "off", "true", "false",
+                                         "y", "n", "t", "f", "none"};
+        int any = 0, nsw = 0, has_yes = 0;
         for (size_t i = 0; o->choices && o->choices[i]; i++)
-            cat(buf, len, "%s%s", i ? " " : "", o->choices[i]);
+            has_yes |= strcmp(o->choices[i], "yes") == 0;
+        for (size_t i = 0; o->choices && o->choices[i]; i++) {
+            int is_sw = 0;
+            for (size_t k = 0; has_yes && k < sizeof sw / sizeof sw[0]; k++)
+                is_sw |= strcmp(o->choices[i], sw[k]) == 0;
+            if (is_sw)
+                nsw++;
+            else
+                cat(buf, len, "%s%s", any++ ? " " : "", o->choices[i]);
+        }
+        if (nsw)
+            cat(buf, len, "%syes/no", any ? " or " : "");
         break;
+    }
     case CASE_OPT_BOOL:
         cat(buf, len, "yes/no");
         break;

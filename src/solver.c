@@ -1272,8 +1272,8 @@ static inline double mls_extent(const sol_setup *su, double e)
  * (of order h_y^2/h_x): on the graded cavities |grad p| of 10^3 where p is
  * uniform along the row, and the particles next to the wall left at 5 m/s;
  * a value fit of weighted gradients does not divide by the short offsets.
- * Its scratch is st->gx, st->gy (Step 10 recomputes them after its last
- * use of this function). Returns the count of fits that fell back from
+ * Its scratch is st->gx, st->gy, which then hold the LS gradient of p
+ * (Step 10's Eq. 36 uses it). Returns the count of fits that fell back from
  * the quadratic basis. */
 static long particle_pressure_gradient(sol *S, const double *p, const double *pfv, double *gxo, double *gyo)
 {
@@ -2094,8 +2094,10 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
     move_particles(S, P->u, P->v, dt, &stats->walled);
     if (th > 0) /* the face values that belong to p^{n+1/2}, the next step's pold */
         memcpy(st->pfprev, st->pf, (size_t)m->nfaces * sizeof *st->pf);
-    /* mesh velocity, Eq. 36, with the LS gradient of Eq. 26 */
-    lsq_gradient(su->g, phi, st->gx, st->gy);
+    /* mesh velocity, Eq. 36, with the LS gradient of Eq. 26 (with
+     * anisotropicCells particle_pressure_gradient left it in gx, gy) */
+    if (!su->set.anisotropic)
+        lsq_gradient(su->g, phi, st->gx, st->gy);
     int bal = su->set.buoyant && su->set.balanced;
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx c = 0; c < nc; c++) {

@@ -743,6 +743,15 @@ static void test_umppm_values(void **state)
             fail_msg("%s %s: %s", ok[i].key, ok[i].value, err.msg);
     }
     assert_string_equal(u.cloud_name, "my cloud");
+    /* anisotropicCells: auto or any OpenFOAM Switch word */
+    struct { const char *w; int v; } an[] = {{"auto", -1}, {"yes", 1}, {"off", 0}, {"y", 1}, {"n", 0},
+                                             {"t", 1}, {"f", 0}, {"none", 0}, {"true", 1}};
+    for (size_t i = 0; i < sizeof an / sizeof an[0]; i++) {
+        write_one(d, "anisotropicCells", an[i].w);
+        if (case_read_umppm(d, &u, &err) != UMP_OK)
+            fail_msg("anisotropicCells %s: %s", an[i].w, err.msg);
+        assert_int_equal(u.anisotropic, an[i].v);
+    }
     /* a pattern key reads as OpenFOAM's (and is not an unknown key) */
     write_umppm(d, "    \"alph.*\" 0.2;\n");
     assert_int_equal(case_read_umppm(d, &u, &err), UMP_OK);
