@@ -554,16 +554,11 @@ const char *case_option_allowed(const case_option *o, char *buf, size_t len)
         /* a choice that also takes an OpenFOAM Switch (its words hold
          * "yes": anisotropicCells auto or yes/no) lists its own words and
          * "or yes/no", as a CASE_OPT_BOOL says "yes/no" for all of them */
-        static const char *const sw[] = {"yes", "no", "on", "off", "true", "false",
-                                         "y", "n", "t", "f", "none"};
         int any = 0, nsw = 0, has_yes = 0;
         for (size_t i = 0; o->choices && o->choices[i]; i++)
             has_yes |= strcmp(o->choices[i], "yes") == 0;
         for (size_t i = 0; o->choices && o->choices[i]; i++) {
-            int is_sw = 0;
-            for (size_t k = 0; has_yes && k < sizeof sw / sizeof sw[0]; k++)
-                is_sw |= strcmp(o->choices[i], sw[k]) == 0;
-            if (is_sw)
+            if (has_yes && foam_switch_value(o->choices[i]) >= 0)
                 nsw++;
             else
                 cat(buf, len, "%s%s", any++ ? " " : "", o->choices[i]);

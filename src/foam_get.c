@@ -809,13 +809,21 @@ ump_status foam_get_word_or(const foam_dict *d, const char *key, const char *dfl
     return word_of(e, key, out, err);
 }
 
-ump_status foam_get_bool_or(const foam_dict *d, const char *key, int dflt, int *out,
-                            ump_err *err)
+int foam_switch_value(const char *w)
 {
     static const struct { const char *w; int v; } sw[] = {
         {"yes", 1}, {"no", 0}, {"on", 1}, {"off", 0}, {"true", 1}, {"false", 0},
         {"y", 1},   {"n", 0},  {"t", 1},  {"f", 0},   {"none", 0},
     };
+    for (size_t i = 0; i < sizeof sw / sizeof sw[0]; i++)
+        if (strcmp(w, sw[i].w) == 0)
+            return sw[i].v;
+    return -1;
+}
+
+ump_status foam_get_bool_or(const foam_dict *d, const char *key, int dflt, int *out,
+                            ump_err *err)
+{
     const foam_entry *e;
     UMP_CALL(primitive(d, key, &e, err));
     if (!e) {
@@ -827,12 +835,11 @@ ump_status foam_get_bool_or(const foam_dict *d, const char *key, int dflt, int *
         *out = (int)e->tok[0].v.label;
         return UMP_OK;
     }
-    if (e->ntok == 1 && e->tok[0].type == FOAM_TOK_WORD)
-        for (size_t i = 0; i < sizeof sw / sizeof sw[0]; i++)
-            if (strcmp(e->tok[0].v.str, sw[i].w) == 0) {
-                *out = sw[i].v;
-                return UMP_OK;
-            }
+    int v = e->ntok == 1 && e->tok[0].type == FOAM_TOK_WORD ? foam_switch_value(e->tok[0].v.str) : -1;
+    if (v >= 0) {
+        *out = v;
+        return UMP_OK;
+    }
     return entry_error(e, key, "a switch (yes/no, on/off, true/false, 1/0)", err);
 }
 

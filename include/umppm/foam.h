@@ -194,6 +194,9 @@ ump_status foam_get_label_or(const foam_dict *d, const char *key, int64_t dflt, 
 /* word or string; *out borrowed from the file */
 ump_status foam_get_word(const foam_dict *d, const char *key, const char **out, ump_err *err);
 ump_status foam_get_word_or(const foam_dict *d, const char *key, const char *dflt, const char **out, ump_err *err);
+/* An OpenFOAM Switch word (yes/no on/off true/false y/n t/f none): its
+ * value 1 or 0; -1 for any other word */
+int foam_switch_value(const char *w);
 /* yes/no on/off true/false y/n t/f none, or a label 0/1 */
 ump_status foam_get_bool_or(const foam_dict *d, const char *key, int dflt, int *out, ump_err *err);
 /* (x y z) */
