@@ -178,6 +178,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     int carried = a->um.refill_carried < 0 ? a->um.variant_star : a->um.refill_carried;
     s->refill = carried ? SOL_REFILL_CARRIED : SOL_REFILL_CENTROID;
     s->refill_k = (int)a->um.refill_k;
+    s->refill_increment = a->um.refill_increment;
     s->mls_support = a->um.mls_support;
     s->p_theta = a->um.p_theta;
     s->positive = a->um.positive_rows;

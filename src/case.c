@@ -449,6 +449,8 @@ static const char *const aniso_words[] = {"auto", "yes", "no", "on", "off", "tru
 static const int aniso_values[] = {-1, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 0};
 static const char *const refill_words[] = {"auto", "centroid", "carried", NULL};
 static const int refill_values[] = {-1, 0, 1};
+static const char *const refill_weight_words[] = {"increment", "distance", NULL};
+static const int refill_weight_values[] = {1, 0};
 
 #define UM_FIELD(f) offsetof(case_umppm, f), sizeof(((case_umppm *)0)->f)
 #define UM_NORANGE {0, 0, 0, 0, 0, 0, 0}
@@ -492,6 +494,9 @@ static const case_option umppm_options[] = {
      UM_FIELD(refill_carried)},
     {"refillParticles", CASE_OPT_LABEL, "4", 4, NULL, NULL, UM_1TO16,
      "refill carried: how many nearest particles lend their values", UM_FIELD(refill_k)},
+    {"refillWeights", CASE_OPT_CHOICE, "increment", 1, refill_weight_words, refill_weight_values, UM_NORANGE,
+     "refill carried: weights 1/(increment^2 + noise(d)), or 1/d^2 (distance)",
+     UM_FIELD(refill_increment)},
     {"mlsSupport", CASE_OPT_SCALAR, "2", 2, NULL, NULL, UM_ZERO_OR_1TO4,
      "MLS weight support in cell extents; 0: Eq. 35's scales (farthest sample)",
      UM_FIELD(mls_support)},

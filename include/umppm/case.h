@@ -70,7 +70,7 @@ typedef struct case_solution {
  *           writeQuality no; ppeSolver auto;
  *           predictorSolver { preconditioner Jacobi; tolerance 1e-12; maxIter 500; }
  *           cloudName umppmCloud; sortInterval 1; refill auto;
- *           refillParticles 4; mlsSupport 2; }
+ *           refillParticles 4; refillWeights increment; mlsSupport 2; }
  * Its keys, types, defaults, allowed values and help are ONE table,
  * case_umppm_options(): the reader, case_umppm_defaults() and
  * case_umppm_help() (umppmFoam -help) all use it.
@@ -95,6 +95,7 @@ typedef struct case_umppm {
     int refill_carried;          /* refill: 1 carried, 0 centroid, -1 auto (default:
                                     carried with UMPPM*, centroid with UMPPM) */
     long refill_k;               /* refillParticles: default 4, 1..16 */
+    int refill_increment;        /* refillWeights: 1 increment (default), 0 distance */
     double mls_support;          /* mlsSupport: 2 (default) or 1..4 cell extents; 0: Eq. 35's scales */
     double p_theta;              /* pressureTheta: 0 (default) .. 0.5 */
     int anisotropic;             /* anisotropicCells: -1 auto (default), 0 or 1 */

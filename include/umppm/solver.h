@@ -69,7 +69,11 @@ typedef struct sol_settings {
     sol_refill refill;       /* value of a particle added to an empty cell (default carried;
                                 umppmFoam's `refill auto` sets centroid with UMPPM) */
     int refill_k;            /* carried: particles whose values are moved to the centroid
-                                (default 5, 1..16) */
+                                (default 4, 1..16) */
+    int refill_increment;    /* carried: weights by the modelled variance of each
+                                estimate, its MLS increment squared plus a noise
+                                growing with its distance (default 1, refillWeights
+                                increment); 0: 1/d^2 (refillWeights distance) */
     double mls_support;      /* > 0: the MLS weight has a fixed support of that many
                                 cell extents, continuous in the particle positions
                                 (default 2; docs/METHOD.md section 8); 0: Eq. 35's

@@ -569,6 +569,7 @@ static void assert_umppm_equal(const case_umppm *a, const case_umppm *b)
     TU_CLOSE(a->max_velocity, b->max_velocity, 0);
     assert_int_equal(a->positive_rows, b->positive_rows);
     assert_int_equal(a->bounded_fits, b->bounded_fits);
+    assert_int_equal(a->refill_increment, b->refill_increment);
 }
 
 /* The table itself: keys unique, field sizes match the types, defaults are
@@ -578,7 +579,7 @@ static void test_umppm_table(void **state)
     (void)state;
     size_t n;
     const case_option *t = case_umppm_options(&n);
-    assert_int_equal(n, 20);
+    assert_int_equal(n, 21);
     for (size_t i = 0; i < n; i++) {
         const case_option *o = &t[i];
         assert_non_null(o->key);
@@ -662,6 +663,7 @@ static void test_umppm_defaults(void **state)
     assert_int_equal(def.sort_interval, 1);
     assert_int_equal(def.positive_rows, 1);
     assert_int_equal(def.bounded_fits, 1);
+    assert_int_equal(def.refill_increment, 1);
 
     /* no UMPPM, an empty one, and every default written out from the table */
     write2(d, "system/fvSolution", HDR, "PISO { nCorrectors 2; }\n");
@@ -699,6 +701,7 @@ static void test_umppm_defaults(void **state)
     assert_int_equal(s.pred_pc, LSOLVE_PC_JACOBI);
     assert_string_equal(def.pred_pc, "Jacobi");
     assert_int_equal(s.sort_interval, (int)def.sort_interval);
+    assert_int_equal(s.refill_increment, def.refill_increment);
     TU_CLOSE(s.pred_tol, def.pred_tol, 0);
     assert_int_equal(s.pred_maxit, def.pred_maxit);
     tu_rmtree(d);
@@ -715,7 +718,7 @@ static void test_umppm_values(void **state)
     write_umppm(d, "    variant UMPPM; alpha 0.05; laplacian IPS; reFactor 2.5; writeQuality yes;\n"
                    "    ppeSolver KLU; predictorSolver { preconditioner ILU0; tolerance 1e-8; maxIter 50; }\n"
                    "    cloudName myCloud; sortInterval 0; positiveRows no;\n"
-                   "    boundedFits off;\n");
+                   "    boundedFits off; refillWeights distance;\n");
     if (case_read_umppm(d, &u, &err) != UMP_OK)
         fail_msg("%s", err.msg);
     assert_int_equal(u.variant_star, 0);
@@ -731,6 +734,11 @@ static void test_umppm_values(void **state)
     assert_int_equal(u.sort_interval, 0);
     assert_int_equal(u.positive_rows, 0);
     assert_int_equal(u.bounded_fits, 0);
+    assert_int_equal(u.refill_increment, 0);
+    write_one(d, "refillWeights", "increment");
+    if (case_read_umppm(d, &u, &err) != UMP_OK)
+        fail_msg("refillWeights increment: %s", err.msg);
+    assert_int_equal(u.refill_increment, 1);
     /* boundary and special values that are allowed */
     struct { const char *key, *value; } ok[] = {
         {"variant", "\"UMPPM*\""}, {"variant", "UMPPM*"}, {"variant", "UMPPMstar"}, {"reFactor", "0"}, {"reFactor", "1"},

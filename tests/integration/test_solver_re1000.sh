@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# test_solver_re1000.sh -- the issue's Re 1000 cavity: OpenFOAM's icoFoam
+# `cavity` tutorial with scale 1, 40 x 40 cells, nu 0.001 (Re 1000), its
+# fixed deltaT 0.0125 (lid Courant number 0.5), t = 40, umppmFoam at its
+# defaults beside icoFoam on the same mesh and step. Asserted, against
+# Ghia, Ghia & Shin (1982) on the centrelines (ghiaCompare, 15 interior
+# points each):
+#   - the RMS error of u on x = 0.5 and of v on y = 0.5, each averaged over
+#     the 21 writes t = 30, 30.5 ... 40 (the run is not steady: single
+#     writes swing by about +-30 %), at most 0.015 (the issue's bound;
+#     measured 0.0098 / 0.0124 with gcc -O2, one or two threads alike;
+#     0.0107 / 0.0110 in the clang ASan build, whose round-off differs.
+#     Before refillWeights increment, with the 1/d^2 weights:
+#     0.0177 / 0.0098, and the check fails. README, "Refill weights by the
+#     increment");
+#   - umppmFoam's RMS errors at t = 40 below icoFoam's on the same mesh
+#     (measured 0.0131 / 0.0055 against 0.0347 / 0.0338).
+# Needs UMPPMFOAM and TOOLDIR (ghiaCompare); OpenFOAM's blockMesh, icoFoam.
+set -eu -o pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+[ -n "${UMPPMFOAM:-}" ] && [ -x "$UMPPMFOAM" ] || { echo "FAIL: UMPPMFOAM not set" >&2; exit 2; }
+[ -n "${TOOLDIR:-}" ] && [ -x "$TOOLDIR/ghiaCompare" ] || { echo "FAIL: TOOLDIR not set" >&2; exit 2; }
+. "$here/lib.sh"
+of_env
+ex=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam/cavity/cavity
+[ -d "$ex" ] || { echo "FAIL: $ex missing (package openfoam-examples)"; exit 1; }
+work=$(mktemp -d "${TMPDIR:-/tmp}/umppm-re1000.XXXXXX")
+fail=0
+
+c=$work/cavity
+cp -r "$ex" "$c"
+find "$c" -name '*.gz' -exec gzip -d {} +
+sed -i 's/^scale .*/scale 1;/; s/(20 20 1)/(40 40 1)/' "$c/system/blockMeshDict"
+sed -i 's/^nu .*/nu              0.001;/' "$c/constant/transportProperties"
+# writes every 40 steps = 0.5 s
+sed -i 's/^deltaT .*/deltaT 0.0125;/; s/^endTime .*/endTime 40;/; s/^writeControl .*/writeControl timeStep;/;
+        s/^writeInterval .*/writeInterval 40;/' "$c/system/controlDict"
+grep -q '(40 40 1)' "$c/system/blockMeshDict" && grep -q '^scale 1;' "$c/system/blockMeshDict" &&
+    grep -q '^nu  *0.001;' "$c/constant/transportProperties" ||
+    { echo "  FAIL: could not set up the Re 1000 case"; exit 1; }
+run_in "$c" blockMesh blockMesh
+mkdir -p "$c/ico"
+cp -r "$c/0" "$c/constant" "$c/system" "$c/ico/"
+run_in "$c/ico" icoFoam icoFoam
+
+if ! "$UMPPMFOAM" -case "$c" > "$c/log.umppmFoam" 2>&1; then
+    echo "  FAIL umppmFoam failed: $(grep -m1 'FATAL' "$c/log.umppmFoam" | cut -c1-200)"
+    exit 1
+fi
+# u_rms v_rms of CASE at TIME
+ghia() { "$TOOLDIR/ghiaCompare" -Re 1000 "$1" "$2" | tail -1 | awk '{ print $3, $5 }'; }
+times=$(ls "$c" | grep -E '^[0-9.]+$' | awk '$1 >= 30' | sort -g)
+n=$(echo "$times" | wc -w)
+[ "$n" -eq 21 ] || { echo "  FAIL expected 21 writes t = 30 .. 40, found $n"; fail=1; }
+means=$(for t in $times; do ghia "$c" "$t"; done | awk '{ u += $1; v += $2; k++ } END { printf "%.5f %.5f\n", u / k, v / k }')
+read -r mu mv <<< "$means"
+read -r u40 v40 <<< "$(ghia "$c" 40)"
+read -r iu iv <<< "$(ghia "$c/ico" 40)"
+echo "Re 1000, 40^2, deltaT 0.0125: umppmFoam RMS vs Ghia, mean over t = 30..40: u $mu, v $mv;" \
+    "t = 40: $u40 / $v40 (icoFoam $iu / $iv)"
+check_below "u RMS vs Ghia, mean over t = 30..40" "$mu" 0.015
+check_below "v RMS vs Ghia, mean over t = 30..40" "$mv" 0.015
+check_below "u RMS at t = 40 / icoFoam's" "$(awk -v a="$u40" -v b="$iu" 'BEGIN { print a / b }')" 1
+check_below "v RMS at t = 40 / icoFoam's" "$(awk -v a="$v40" -v b="$iv" 'BEGIN { print a / b }')" 1
+[ "$fail" -eq 0 ] && rm -rf "$work"
+exit "$fail"
