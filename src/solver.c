@@ -83,7 +83,8 @@
  *     inverse of a modelled variance, the square of the estimate's MLS
  *     increment plus a noise term growing with the distance
  *     (refillWeights increment), so that in a boundary layer the
- *     particles along the flow lend more than those across it.
+ *     particles along the flow lend more than those across it; 1/d^2
+ *     where anisotropicCells is on.
  *   - Particles are re-sorted by cell after the management of every step
  *     (sortInterval), an O(N) gather from the bins: the particles of a cell
  *     are consecutive, stencil neighbours are near in memory, and the
@@ -176,11 +177,13 @@ typedef struct sol_setup {
  * refills of -30 to +26 times the lid speed, and the run diverged */
 #define SOL_FIT_MARGIN 0.25
 /* refillWeights increment: the noise of a carried estimate from distance d,
- * kappa (d / l)^2 times the square of the speed range of the stencil's
- * samples, l the empty cell's size (refill_value). kappa 0.1 measured best
- * of 0.05, 0.1, 0.2, 0.3 on the Re 1000 40^2 cavity's whole field against
- * the converged flow (README, "Refill weights by the increment") */
-#define SOL_REFILL_NOISE 0.1
+ * (d / l)^2 (kappa x the speed range of the stencil's samples)^2, l^2 the
+ * empty cell's area (refill_value). kappa 0.15 by measurement (README,
+ * "Refill weights by the increment"): 0.1 was best on the Re 1000 40^2
+ * cavity's whole field but put the elbow's inlet-6 pressure 1.42x the
+ * converged one, 0.2 let the cavity graded 10:1 toward its walls reach
+ * 1.11x the lid speed */
+#define SOL_REFILL_NOISE 0.15
 typedef struct sol_work {
     size_t cap;
     union {                    /* gathered positions (stencil shift applied) */
@@ -2174,7 +2177,7 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
         return 0;
     /* each candidate's estimate u_j + f_j(x_c) - f_j(x_j), and the square
      * of its increment |f_j(x_c) - f_j(x_j)|^2 (velocity components) */
-    double est[KMAX][SOL_MAX_VALUES], inc2[KMAX];
+    double est[KMAX][SOL_MAX_VALUES], inc2[KMAX], fc[KMAX][SOL_MAX_VALUES], fjj[KMAX][SOL_MAX_VALUES];
     size_t e = cnt - 1;
     for (int a = 0; a < nk; a++) {
         /* j to the end: the fits use the first cnt - 1 samples */
@@ -2195,6 +2198,7 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
                 for (size_t i = 0; i < e; i++)
                     f += w->c0[i] * w->gv[q][i];
                 inc[q] += sg * f;
+                (at ? fjj : fc)[a][q] = f;
             }
         }
         inc2[a] = inc[0] * inc[0] + inc[1] * inc[1];
@@ -2214,9 +2218,12 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
      * 1/d^2 weights thickened the lid's layer (its second and third rows
      * 3-10 % too fast); refilled with the converged flow's values instead,
      * the field's error fell from 0.0154 to 0.0047, the mesh's own floor.
-     * refillWeights distance: 1/d^2 */
+     * refillWeights distance: 1/d^2, and also where anisotropicCells is on:
+     * on cells stretched 15 491:1 the increment weights took the 8x8
+     * graded cavity from 0.38 to 0.52 from the converged flow */
+    int by_inc = su->set.refill_increment && !su->set.anisotropic;
     double eta2 = 0;
-    if (su->set.refill_increment) {
+    if (by_inc) {
         double lo = INFINITY, hi = -INFINITY;
         for (size_t j = 0; j < cnt; j++) {
             double sp = hypot(w->gv[0][j], w->gv[1][j]);
@@ -2228,11 +2235,21 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
     }
     double sum[SOL_MAX_VALUES] = {0}, wsum = 0;
     for (int a = 0; a < nk; a++) {
-        double wa = su->set.refill_increment ? 1 / (inc2[a] + cd[a] / m->area[c] * eta2 + 1e-300)
-                                             : 1 / (cd[a] + 1e-6 * m->area[c]);
-        wsum += wa;
-        for (int q = 0; q < nv; q++)
-            sum[q] += wa * est[a][q];
+        if (by_inc) {
+            double wa = 1 / (inc2[a] + cd[a] / m->area[c] * eta2 + 1e-300);
+            wsum += wa;
+            for (int q = 0; q < nv; q++)
+                sum[q] += wa * est[a][q];
+        } else { /* 1/d^2, summed in the order of its first version */
+            double wa = 1 / (cd[a] + 1e-6 * m->area[c]);
+            wsum += wa;
+            for (int q = 0; q < nv; q++)
+                sum[q] += wa * fc[a][q];
+            for (int q = 0; q < nv; q++)
+                sum[q] += -wa * fjj[a][q];
+            for (int q = 0; q < nv; q++)
+                sum[q] += wa * w->gv[q][cand[a]];
+        }
     }
     for (int q = 0; q < nv; q++)
         out[q] = bound_fit(w, w->gv[q], cnt, sum[q] / wsum);

@@ -73,7 +73,8 @@ typedef struct sol_settings {
     int refill_increment;    /* carried: weights by the modelled variance of each
                                 estimate, its MLS increment squared plus a noise
                                 growing with its distance (default 1, refillWeights
-                                increment); 0: 1/d^2 (refillWeights distance) */
+                                increment; 1/d^2 where anisotropic is on);
+                                0: 1/d^2 (refillWeights distance) */
     double mls_support;      /* > 0: the MLS weight has a fixed support of that many
                                 cell extents, continuous in the particle positions
                                 (default 2; docs/METHOD.md section 8); 0: Eq. 35's

@@ -20,7 +20,10 @@
 #     fixed MLS support of 2 cell extents, the default, the amplitude is
 #     2.6 % too high at t = 5 on this mesh; README, "MLS support");
 #   - the same with Eq. 35's own scales (mlsSupport 0): L2 < 0.006
-#     (measured 0.0043). With the paper's refill (u_P, refill centroid)
+#     (measured 0.00596, the same in the clang ASan build; 0.0043 with the
+#     1/d^2 refill weights, refillWeights distance, the default until
+#     2026-12-04; 0.0069 with the increment weights' noise factor 0.1
+#     instead of 0.15). With the paper's refill (u_P, refill centroid)
 #     this was 0.0165 and the check fails (README, "Refill that keeps
 #     carried values");
 #   - pressureTheta 0.5 on N_m = 1600: the L2 errors at U = 1 and at U =
