@@ -2175,17 +2175,17 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
     }
     if (nk == 0 || cnt < 2)
         return 0;
-    /* each candidate's estimate u_j + f_j(x_c) - f_j(x_j), and the square
-     * of its increment |f_j(x_c) - f_j(x_j)|^2 (velocity components) */
-    double est[KMAX][SOL_MAX_VALUES], inc2[KMAX], fc[KMAX][SOL_MAX_VALUES], fjj[KMAX][SOL_MAX_VALUES];
+    /* each candidate's fits f_j(x_c) and f_j(x_j): its estimate is
+     * u_j + f_j(x_c) - f_j(x_j) */
+    double fc[KMAX][SOL_MAX_VALUES], fjj[KMAX][SOL_MAX_VALUES];
     size_t e = cnt - 1;
     for (int a = 0; a < nk; a++) {
         /* j to the end: the fits use the first cnt - 1 samples */
         size_t j = cand[a];
         sample_swap(w, j, e, nv);
-        double xj = w->px[e], yj = w->py[e], inc[SOL_MAX_VALUES] = {0};
-        for (int at = 0; at < 2; at++) { /* + f_j(x_c), - f_j(x_j) */
-            double x = at ? xj : xc, y = at ? yj : yc, sg = at ? -1 : 1;
+        double xj = w->px[e], yj = w->py[e];
+        for (int at = 0; at < 2; at++) { /* f_j(x_c), f_j(x_j) */
+            double x = at ? xj : xc, y = at ? yj : yc;
             for (size_t i = 0; i < e; i++) {
                 w->h[i] = w->px[i] - x;
                 w->k[i] = w->py[i] - y;
@@ -2197,13 +2197,9 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
                 double f = 0;
                 for (size_t i = 0; i < e; i++)
                     f += w->c0[i] * w->gv[q][i];
-                inc[q] += sg * f;
                 (at ? fjj : fc)[a][q] = f;
             }
         }
-        inc2[a] = inc[0] * inc[0] + inc[1] * inc[1];
-        for (int q = 0; q < nv; q++)
-            est[a][q] = w->gv[q][e] + inc[q];
         sample_swap(w, j, e, nv); /* back: the order of later candidates */
     }
     /* refillWeights increment: w_j = 1 / (|inc_j|^2 + (d_j / l)^2 eta^2),
@@ -2236,10 +2232,11 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
     double sum[SOL_MAX_VALUES] = {0}, wsum = 0;
     for (int a = 0; a < nk; a++) {
         if (by_inc) {
-            double wa = 1 / (inc2[a] + cd[a] / m->area[c] * eta2 + 1e-300);
+            double du = fc[a][0] - fjj[a][0], dv = fc[a][1] - fjj[a][1];
+            double wa = 1 / (du * du + dv * dv + cd[a] / m->area[c] * eta2 + 1e-300);
             wsum += wa;
             for (int q = 0; q < nv; q++)
-                sum[q] += wa * est[a][q];
+                sum[q] += wa * (w->gv[q][cand[a]] + (fc[a][q] - fjj[a][q]));
         } else { /* 1/d^2, summed in the order of its first version */
             double wa = 1 / (cd[a] + 1e-6 * m->area[c]);
             wsum += wa;

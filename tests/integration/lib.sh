@@ -127,6 +127,12 @@ make_case() {
     fi
 }
 
+# tutorial_copy SRC DEST: an OpenFOAM tutorial case (openfoam-examples,
+# some files gzipped) copied to DEST with its files unpacked.
+tutorial_copy() {
+    cp -r "$1" "$2" && find "$2" -name '*.gz' -exec gzip -d {} +
+}
+
 # checkmesh_cell_types CASE: e.g. "hexahedra:160 prisms:664".
 checkmesh_cell_types() {
     sed -n '/Overall number of cells of each type/,/polyhedra/p' "$1/log.checkMesh" |

@@ -60,8 +60,7 @@ rel_l2() { "$TOOLDIR/foamCompare" "$1" 0.5 "$2" 0.5 U | awk '$1 == "U" { print $
 # graded_case DIR GRADING: the tutorial cavity on 8x8 cells graded in x,
 # with icoFoam's run in DIR/ico and the converged flow in DIR/ref
 graded_case() {
-    cp -r "$ex" "$1"
-    find "$1" -name '*.gz' -exec gzip -d {} +
+    tutorial_copy "$ex" "$1"
     sed -i "s/(20 20 1)/(8 8 1)/; s/simpleGrading (1 1 1)/simpleGrading ($2 1 1)/" "$1/system/blockMeshDict"
     sed -i "s/^deltaT .*/deltaT 0.005;/" "$1/system/controlDict"
     grep -q "simpleGrading ($2 1 1)" "$1/system/blockMeshDict" || { echo "  FAIL: could not grade the mesh"; return 1; }
@@ -103,8 +102,7 @@ else
 fi
 
 b=$work/walls10
-cp -r "$ex" "$b"
-find "$b" -name '*.gz' -exec gzip -d {} +
+tutorial_copy "$ex" "$b"
 sed -i 's/simpleGrading (1 1 1)/simpleGrading (((0.5 0.5 10) (0.5 0.5 0.1)) ((0.5 0.5 10) (0.5 0.5 0.1)) 1)/' \
     "$b/system/blockMeshDict"
 sed -i 's/^deltaT .*/deltaT 0.0005;/; s/^endTime .*/endTime 0.1;/; s/^writeControl .*/writeControl runTime;/;
@@ -128,8 +126,7 @@ else
 fi
 
 k=$work/corner
-cp -r "$ex" "$k"
-find "$k" -name '*.gz' -exec gzip -d {} +
+tutorial_copy "$ex" "$k"
 sed -i 's/simpleGrading (1 1 1)/simpleGrading (0.001 0.001 1)/' "$k/system/blockMeshDict"
 sed -i 's/^deltaT .*/deltaT 0.005;/' "$k/system/controlDict"
 run_in "$k" blockMesh blockMesh

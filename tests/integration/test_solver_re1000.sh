@@ -30,8 +30,7 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/umppm-re1000.XXXXXX")
 fail=0
 
 c=$work/cavity
-cp -r "$ex" "$c"
-find "$c" -name '*.gz' -exec gzip -d {} +
+tutorial_copy "$ex" "$c"
 sed -i 's/^scale .*/scale 1;/; s/(20 20 1)/(40 40 1)/' "$c/system/blockMeshDict"
 sed -i 's/^nu .*/nu              0.001;/' "$c/constant/transportProperties"
 # writes every 40 steps = 0.5 s
