@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# bench/cavityHighRe.sh [-Re 10000] [-n "64 96"] [-endTime 100] [-write W]
+# bench/cavityHighRe.sh [-Re 10000] [-n "64 96"] [-endTime 100] [-write W] [-mean T0]
 #                       [-runs "umppm ico-linear ico-LUD ico-LLV"] [-work DIR]
 # The high-Re lid-driven cavity on coarse meshes (issue 14, item 3): OpenFOAM's
 # icoFoam cavity tutorial (blockMesh, its 0/, fvSolution) with scale 1, n x n
@@ -18,14 +18,18 @@
 # the rows compare the solvers at one instant of a developing flow. With
 # -write W (W < endTime) the fields are also written every W, and the last
 # two columns give u_rms and v_rms at endTime - W: equal to the endTime
-# columns once the flow is steady.
+# columns once the flow is steady. With -mean T0 the last two columns are
+# instead u_rms and v_rms of the time-averaged field over the writes
+# t >= T0 (ghiaCompare -mean), the measure for a run that does not settle
+# (a coarse mesh at high Re can stay unsteady where Ghia's flow is steady).
 # UMPPM_BIN: the directory of umppmFoam and ghiaCompare (default bin/).
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
-Re=10000 ns="64 96" endTime=100 write="" runs="umppm ico-linear ico-LUD ico-LLV" work=""
+Re=10000 ns="64 96" endTime=100 write="" mean="" runs="umppm ico-linear ico-LUD ico-LLV" work=""
 while [ $# -gt 0 ]; do
     case $1 in
-    -Re) Re=$2 ;; -n) ns=$2 ;; -endTime) endTime=$2 ;; -write) write=$2 ;; -runs) runs=$2 ;;
+    -Re) Re=$2 ;; -n) ns=$2 ;; -endTime) endTime=$2 ;; -write) write=$2 ;; -mean) mean=$2 ;;
+    -runs) runs=$2 ;;
     -work) work=$2 ;;
     *) echo "unknown option $1" >&2; exit 1 ;;
     esac
@@ -40,8 +44,8 @@ work=${work:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-highRe.XXXXXX")}
 mkdir -p "$work"
 printf "# cavity Re %s, t = %s, lid Courant number 0.5, one thread; errors against Ghia et al. (1982); work %s\n" \
     "$Re" "$endTime" "$work"
-printf "%5s %-12s %8s %8s %8s %8s %9s %10s %10s\n" n run u_rms u_max v_rms v_max CPU_s \
-    u_rms_prev v_rms_prev
+if [ -n "$mean" ]; then c1=u_rms_mean c2=v_rms_mean; else c1=u_rms_prev c2=v_rms_prev; fi
+printf "%5s %-12s %8s %8s %8s %8s %9s %10s %10s\n" n run u_rms u_max v_rms v_max CPU_s "$c1" "$c2"
 for n in $ns; do
     base=$work/mesh$n
     if [ ! -f "$base/constant/polyMesh/owner" ]; then
@@ -81,7 +85,14 @@ for n in $ns; do
         t=$(echo "$times" | tail -1) tp=$(echo "$times" | head -1)
         read -r _ _ urms umax vrms vmax < <("${UMPPM_BIN:-$top/bin}/ghiaCompare" -Re "$Re" "$d" "$t" | tail -1)
         up=- vp=-
-        if [ "$tp" != "$t" ]; then
+        if [ -n "$mean" ]; then
+            args=()
+            for w in $(foamListTimes -case "$d" 2> /dev/null); do
+                awk -v w="$w" -v t0="$mean" 'BEGIN { exit !(w >= t0 - 1e-9) }' && args+=("$d" "$w")
+            done
+            read -r _ _ _ up _ vp _ < <("${UMPPM_BIN:-$top/bin}/ghiaCompare" -Re "$Re" -mean "${args[@]}" | tail -1)
+            up="$up/$((${#args[@]} / 2))"
+        elif [ "$tp" != "$t" ]; then
             read -r _ _ up _ vp _ < <("${UMPPM_BIN:-$top/bin}/ghiaCompare" -Re "$Re" "$d" "$tp" | tail -1)
         fi
         printf "%5s %-12s %8s %8s %8s %8s %9s %10s %10s\n" "$n" "$r" "$urms" "$umax" "$vrms" "$vmax" \

@@ -3,7 +3,7 @@
  * (1982), Tables I and II: u on the vertical centreline, v on the
  * horizontal centreline.
  *
- *   ghiaCompare [-Re 100] [-ref DIR] [-U 1] [-profiles] <case> <time> [<case> <time> ...]
+ *   ghiaCompare [-Re 100] [-ref DIR] [-U 1] [-profiles] [-mean] <case> <time> [<case> <time> ...]
  *
  * The cavity is the bounding box of the mesh's face centres, so any square
  * cavity (OpenFOAM's 0.1 m tutorial, a unit one) is mapped onto Ghia's unit
@@ -14,7 +14,11 @@
  * same rule for every case, so an icoFoam run and a umppmFoam run of one
  * mesh are compared alike. Points on the walls (u, v fixed there) are left
  * out. Prints per case the RMS and max error of u and v over the interior
- * points (and with -profiles every sampled value). Exit 0, 1 on bad input.
+ * points (and with -profiles every sampled value). With -mean a last line
+ * "mean" gives the errors of the mean of the sampled profiles over all the
+ * given times: the sampling is linear in U, so this is the error of the
+ * time-averaged field (for a run that does not settle to Ghia's steady
+ * state). Exit 0, 1 on bad input.
  */
 #include "umppm/case.h"
 #include "umppm/fieldio.h"
@@ -109,7 +113,8 @@ static int sample(const mesh2d *m, const double *uc, const double *gx, const dou
     return 1;
 }
 
-static int run_case(const char *c, const char *tname, const profile ref[2], double Ulid, int profiles)
+static int run_case(const char *c, const char *tname, const profile ref[2], double Ulid, int profiles,
+                    sampled smp[2])
 {
     char path[4400];
     ump_err err;
@@ -150,7 +155,6 @@ static int run_case(const char *c, const char *tname, const profile ref[2], doub
         bb[2] = fmin(bb[2], m->fy[f]);
         bb[3] = fmax(bb[3], m->fy[f]);
     }
-    sampled smp[2];
     for (int k = 0; k < 2; k++) {
         double *uc = buf + (size_t)(3 * k) * nc, *gx = uc + nc, *gy = gx + nc;
         for (size_t i = 0; i < nc; i++)
@@ -180,9 +184,28 @@ out:
     return ok;
 }
 
+/* Errors of the profile whose values are sum[k][i] / n. */
+static void mean_errors(const profile ref[2], const sampled *first, double sum[2][MAXPTS], int n, double e[4])
+{
+    for (int k = 0; k < 2; k++) {
+        double s2 = 0, mx = 0;
+        int cnt = 0;
+        for (int i = 0; i < ref[k].n; i++) {
+            if (!first[k].used[i])
+                continue;
+            double d = sum[k][i] / n - ref[k].val[i];
+            s2 += d * d;
+            mx = fmax(mx, fabs(d));
+            cnt++;
+        }
+        e[2 * k] = sqrt(s2 / cnt);
+        e[2 * k + 1] = mx;
+    }
+}
+
 int main(int argc, char **argv)
 {
-    int re = 100, profiles = 0, i = 1;
+    int re = 100, profiles = 0, mean = 0, i = 1;
     double Ulid = 1;
     const char *refdir = UMPPM_TOOLS_REF;
     for (; i < argc && argv[i][0] == '-'; i++) {
@@ -190,10 +213,11 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "-ref") && i + 1 < argc) refdir = argv[++i];
         else if (!strcmp(argv[i], "-U") && i + 1 < argc) Ulid = atof(argv[++i]);
         else if (!strcmp(argv[i], "-profiles")) profiles = 1;
+        else if (!strcmp(argv[i], "-mean")) mean = 1;
         else break;
     }
     if (i >= argc || (argc - i) % 2 || !(Ulid > 0)) {
-        fprintf(stderr, "usage: ghiaCompare [-Re 100] [-ref DIR] [-U 1] [-profiles] <case> <time> "
+        fprintf(stderr, "usage: ghiaCompare [-Re 100] [-ref DIR] [-U 1] [-profiles] [-mean] <case> <time> "
                         "[<case> <time> ...]\n");
         return 1;
     }
@@ -216,9 +240,27 @@ int main(int argc, char **argv)
     printf("# Ghia et al. (1982) Re = %d: u on x = 0.5 (%d interior points), v on y = 0.5 (%d)\n", re,
            ref[0].n - 2, ref[1].n - 2);
     printf("%-40s %8s %9s %9s %9s %9s\n", "# case", "time", "u_rms", "u_max", "v_rms", "v_max");
-    int rc = 0;
-    for (; i + 1 < argc; i += 2)
-        if (!run_case(argv[i], argv[i + 1], ref, Ulid, profiles))
+    int rc = 0, n = 0;
+    static double sum[2][MAXPTS];
+    sampled first[2];
+    for (; i + 1 < argc; i += 2) {
+        sampled smp[2];
+        if (!run_case(argv[i], argv[i + 1], ref, Ulid, profiles, smp)) {
             rc = 1;
+            continue;
+        }
+        if (n++ == 0)
+            memcpy(first, smp, sizeof first);
+        for (int k = 0; k < 2; k++)
+            for (int j = 0; j < ref[k].n; j++)
+                sum[k][j] += smp[k].used[j] ? smp[k].val[j] : 0.0;
+    }
+    if (mean && n > 0 && !rc) {
+        double e[4];
+        mean_errors(ref, first, sum, n, e);
+        char what[32];
+        snprintf(what, sizeof what, "%d times", n);
+        printf("%-40s %8s %9.5f %9.5f %9.5f %9.5f\n", "mean", what, e[0], e[1], e[2], e[3]);
+    }
     return rc;
 }
