@@ -15,8 +15,9 @@
 #     system/), deltaT 0.1 / 0.05 / 0.025 (largest Courant number about 1 /
 #     0.5 / 0.25), t = 10: U against icoFoam on the mesh refined three times
 #     (tools/reference/elbow_icoFoam_level3_t10), relative L2.
-# CPU seconds are the solver's user + sys. About 6 minutes for the default
-# three variants.
+# CPU seconds are the solver's user + sys (Taylor-Green: its ExecutionTime,
+# CPU seconds as in OpenFOAM's logs). About 6 minutes for the default three
+# variants on an idle machine.
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 variants="UMPPMstar UMPPM:0.09 UMPPM:0.05" work=""
@@ -28,6 +29,7 @@ while [ $# -gt 0 ]; do
     shift 2
 done
 . "$top/tutorials/RunFunctions" # setEntry; exports WM_PROJECT_DIR
+export OMP_NUM_THREADS=1
 make -C "$top" -s >/dev/null
 ex=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam
 [ -d "$ex/cavity/cavity" ] && [ -d "$ex/elbow" ] || { echo "no icoFoam tutorials in $ex" >&2; exit 1; }
@@ -41,7 +43,7 @@ umppm() {
     if [ "${v%%:*}" = UMPPM ]; then
         printf 'UMPPM { variant UMPPM; alpha %s; }\n' "${v#*:}" >> "$d/system/fvSolution"
     fi
-    (cd "$d" && OMP_NUM_THREADS=1 /usr/bin/time -f "%U %S" -o cpu.txt "$bin/umppmFoam" > log 2>&1) ||
+    (cd "$d" && /usr/bin/time -f "%U %S" -o cpu.txt "$bin/umppmFoam" > log 2>&1) ||
         { echo "umppmFoam failed in $d (see $d/log)" >&2; exit 1; }
     awk '{ printf "%.1f", $1 + $2 }' "$d/cpu.txt"
 }
@@ -89,12 +91,15 @@ for v in $variants; do
     done
     row="$row |"
     for cfl in 0.5 0.25 0.125; do
+        tw=$work/$v-tg-$cfl
         if [ "${v%%:*}" = UMPPM ]; then
-            o=$("$top/bench/taylorGreen.sh" -variant UMPPM -cfl "$cfl" -umppm "alpha ${v#*:};" 20)
+            o=$(BENCH_WORK=$tw "$top/bench/taylorGreen.sh" -variant UMPPM -cfl "$cfl" -umppm "alpha ${v#*:};" 20)
         else
-            o=$("$top/bench/taylorGreen.sh" -variant "$v" -cfl "$cfl" 20)
+            o=$(BENCH_WORK=$tw "$top/bench/taylorGreen.sh" -variant "$v" -cfl "$cfl" 20)
         fi
-        e=$(echo "$o" | awk '$1 == 1600 { printf "%.4f/%.4f (%.1f)", $7, $9, $4 }')
+        # CPU seconds: the solver's last ExecutionTime (taylorGreen.sh prints wall seconds)
+        cpu=$(sed -n 's/^ExecutionTime = \([0-9.e+-]*\) s.*/\1/p' "$tw"/tg20-*/log | tail -1)
+        e=$(echo "$o" | awk -v c="$cpu" '$1 == 1600 { printf "%.4f/%.4f (%.1f)", $7, $9, c }')
         row="$row $(printf "%-20s" "$e")"
     done
     row="$row |"
