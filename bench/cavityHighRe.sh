@@ -81,13 +81,13 @@ for n in $ns; do
             mv "$d/cpu.run" "$d/cpu.txt"
         fi
         # deltaT 0.5/n: the last time is 99.999936 for n = 96
-        times=$(foamListTimes -case "$d" 2> /dev/null | tail -2)
-        t=$(echo "$times" | tail -1) tp=$(echo "$times" | head -1)
+        times=$(foamListTimes -case "$d" 2> /dev/null)
+        t=$(echo "$times" | tail -1) tp=$(echo "$times" | tail -2 | head -1)
         read -r _ _ urms umax vrms vmax < <("${UMPPM_BIN:-$top/bin}/ghiaCompare" -Re "$Re" "$d" "$t" | tail -1)
         up=- vp=-
         if [ -n "$mean" ]; then
             args=()
-            for w in $(foamListTimes -case "$d" 2> /dev/null); do
+            for w in $times; do
                 awk -v w="$w" -v t0="$mean" 'BEGIN { exit !(w >= t0 - 1e-9) }' && args+=("$d" "$w")
             done
             read -r _ _ _ up _ vp _ < <("${UMPPM_BIN:-$top/bin}/ghiaCompare" -Re "$Re" -mean "${args[@]}" | tail -1)

@@ -76,21 +76,38 @@ static int read_table(const char *path, int col, profile *p)
 
 typedef struct sampled {
     double rms, max;
-    double val[MAXPTS];
-    int used[MAXPTS];
+    double val[MAXPTS]; /* at the interior points */
 } sampled;
+
+/* Point i of a profile is inside the cavity (on the walls u, v are fixed
+ * and left out). */
+static int interior(const profile *ref, int i) { return ref->s[i] > 1e-9 && ref->s[i] < 1 - 1e-9; }
+
+/* RMS and max error of val against the profile over its interior points. */
+static void profile_errors(const profile *ref, const double *val, double *rms, double *max)
+{
+    double s2 = 0, mx = 0;
+    int cnt = 0;
+    for (int i = 0; i < ref->n; i++) {
+        if (!interior(ref, i))
+            continue;
+        double e = val[i] - ref->val[i];
+        s2 += e * e;
+        mx = fmax(mx, fabs(e));
+        cnt++;
+    }
+    *rms = sqrt(s2 / cnt);
+    *max = mx;
+}
 
 /* Sample component k (0: u, 1: v) along the centreline: line 0 is x = 0.5
  * (s = y), line 1 is y = 0.5 (s = x). */
 static int sample(const mesh2d *m, const double *uc, const double *gx, const double *gy, const double bb[4],
                   double Ulid, int line, const profile *ref, sampled *out)
 {
-    double s2 = 0, mx = 0;
-    int cnt = 0;
     ump_idx start = 0;
     for (int i = 0; i < ref->n; i++) {
-        out->used[i] = ref->s[i] > 1e-9 && ref->s[i] < 1 - 1e-9;
-        if (!out->used[i])
+        if (!interior(ref, i))
             continue;
         double x = line == 0 ? 0.5 : ref->s[i], y = line == 0 ? ref->s[i] : 0.5;
         x = bb[0] + x * (bb[1] - bb[0]);
@@ -101,15 +118,9 @@ static int sample(const mesh2d *m, const double *uc, const double *gx, const dou
             return 0;
         }
         start = cell;
-        double v = (uc[cell] + gx[cell] * (x - m->cx[cell]) + gy[cell] * (y - m->cy[cell])) / Ulid;
-        out->val[i] = v;
-        double e = v - ref->val[i];
-        s2 += e * e;
-        mx = fmax(mx, fabs(e));
-        cnt++;
+        out->val[i] = (uc[cell] + gx[cell] * (x - m->cx[cell]) + gy[cell] * (y - m->cy[cell])) / Ulid;
     }
-    out->rms = sqrt(s2 / cnt);
-    out->max = mx;
+    profile_errors(ref, out->val, &out->rms, &out->max);
     return 1;
 }
 
@@ -167,7 +178,7 @@ static int run_case(const char *c, const char *tname, const profile ref[2], doub
     if (profiles)
         for (int k = 0; k < 2; k++)
             for (int i = 0; i < ref[k].n; i++)
-                if (smp[k].used[i])
+                if (interior(&ref[k], i))
                     printf("#   %c(%s = %.4f)  Ghia %9.5f  case %9.5f\n", "uv"[k], k ? "x" : "y", ref[k].s[i],
                            ref[k].val[i], smp[k].val[i]);
     ok = 1;
@@ -182,25 +193,6 @@ out:
     mesh_free(&m);
     pmesh_free(&pm);
     return ok;
-}
-
-/* Errors of the profile whose values are sum[k][i] / n. */
-static void mean_errors(const profile ref[2], const sampled *first, double sum[2][MAXPTS], int n, double e[4])
-{
-    for (int k = 0; k < 2; k++) {
-        double s2 = 0, mx = 0;
-        int cnt = 0;
-        for (int i = 0; i < ref[k].n; i++) {
-            if (!first[k].used[i])
-                continue;
-            double d = sum[k][i] / n - ref[k].val[i];
-            s2 += d * d;
-            mx = fmax(mx, fabs(d));
-            cnt++;
-        }
-        e[2 * k] = sqrt(s2 / cnt);
-        e[2 * k + 1] = mx;
-    }
 }
 
 int main(int argc, char **argv)
@@ -241,23 +233,25 @@ int main(int argc, char **argv)
            ref[0].n - 2, ref[1].n - 2);
     printf("%-40s %8s %9s %9s %9s %9s\n", "# case", "time", "u_rms", "u_max", "v_rms", "v_max");
     int rc = 0, n = 0;
-    static double sum[2][MAXPTS];
-    sampled first[2];
+    sampled avg[2] = {0};
     for (; i + 1 < argc; i += 2) {
         sampled smp[2];
         if (!run_case(argv[i], argv[i + 1], ref, Ulid, profiles, smp)) {
             rc = 1;
             continue;
         }
-        if (n++ == 0)
-            memcpy(first, smp, sizeof first);
+        n++;
         for (int k = 0; k < 2; k++)
             for (int j = 0; j < ref[k].n; j++)
-                sum[k][j] += smp[k].used[j] ? smp[k].val[j] : 0.0;
+                avg[k].val[j] += interior(&ref[k], j) ? smp[k].val[j] : 0.0;
     }
     if (mean && n > 0 && !rc) {
-        double e[4];
-        mean_errors(ref, first, sum, n, e);
+        for (int k = 0; k < 2; k++) {
+            for (int j = 0; j < ref[k].n; j++)
+                avg[k].val[j] /= n;
+            profile_errors(&ref[k], avg[k].val, &avg[k].rms, &avg[k].max);
+        }
+        double e[4] = {avg[0].rms, avg[0].max, avg[1].rms, avg[1].max};
         char what[32];
         snprintf(what, sizeof what, "%d times", n);
         printf("%-40s %8s %9.5f %9.5f %9.5f %9.5f\n", "mean", what, e[0], e[1], e[2], e[3]);
