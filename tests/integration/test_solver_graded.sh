@@ -10,7 +10,10 @@
 #   - simpleGrading (1000 1 1), (10000 1 1), (100000 1 1): cell aspect
 #     ratios 199, 1 708 and 15 491. The default (anisotropicCells
 #     auto) turns the anisotropic operators on (the log says so); each run
-#     reaches t = 0.5 with max |U| <= 1.05 x the lid speed, and U is within
+#     reaches t = 0.5 with max |U| <= 1.05 x the lid speed at each of the
+#     tutorial's five writes t = 0.1 ... 0.5 (measured 0.485, 0.641, 0.622
+#     with gcc -O2; written every 0.025 instead, the 1 708:1 run reaches
+#     0.98 between them), and U is within
 #     0.45 (relative L2) of the converged flow (measured 0.318, 0.276,
 #     0.375 with gcc -O2, 0.303, 0.231, 0.247 in the clang ASan build, CI
 #     of 46f2088: the two builds' fields differ on these meshes; icoFoam
@@ -83,10 +86,14 @@ for spec in 1000:199 10000:1708 100000:15491; do
     fi
     grep -q "is stretched $ar:1 .*anisotropicCells on (auto" "$c/log.umppmFoam" ||
         { echo "  FAIL aspect ratio $ar: the log does not say that anisotropicCells auto is on"; fail=1; }
-    echo "aspect ratio $ar: max |U| $(max_speed "$c/0.5/U") (icoFoam $(max_speed "$c/ico/0.5/U")); U vs converged:" \
+    # max |U| over the tutorial's five writes t = 0.1 ... 0.5, not only the last
+    umax=$(for t in "$c"/0.[1-5]; do max_speed "$t/U"; done | sort -g | tail -1)
+    nw=$(find "$c" -maxdepth 1 -name '0.[1-5]' | wc -l)
+    echo "aspect ratio $ar: max |U| over the $nw writes $umax, at t = 0.5 $(max_speed "$c/0.5/U") (icoFoam $(max_speed "$c/ico/0.5/U")); U vs converged:" \
         "umppmFoam $(rel_l2 "$c" "$c/ref"), icoFoam $(rel_l2 "$c/ico" "$c/ref"); umppmFoam vs icoFoam $(rel_l2 "$c" "$c/ico")" \
         "(not asserted; the issue's target is 0.1)"
-    check_range "aspect ratio $ar: max |U| / lid speed" "$(max_speed "$c/0.5/U")" 0 1.05
+    check_range "aspect ratio $ar: writes t = 0.1 ... 0.5" "$nw" 5 5
+    check_range "aspect ratio $ar: max |U| / lid speed over the writes" "$umax" 0 1.05
     check_below "aspect ratio $ar: U vs the converged flow (rel. L2)" "$(rel_l2 "$c" "$c/ref")" 0.45
 done
 
