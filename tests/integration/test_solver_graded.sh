@@ -12,8 +12,9 @@
 #     auto) turns the anisotropic operators on (the log says so); each run
 #     reaches t = 0.5 with max |U| <= 1.05 x the lid speed at each of the
 #     tutorial's five writes t = 0.1 ... 0.5 (measured 0.485, 0.641, 0.622
-#     with gcc -O2; written every 0.025 instead, the 1 708:1 run reaches
-#     0.98 between them), and U is within
+#     with gcc -O2, 0.671, 0.638, 0.689 in the clang ASan build; written
+#     every 0.025 instead, the gcc 1 708:1 run reaches 0.98 between them),
+#     and U is within
 #     0.45 (relative L2) of the converged flow (measured 0.318, 0.276,
 #     0.375 with gcc -O2, 0.303, 0.231, 0.247 in the clang ASan build, CI
 #     of 46f2088: the two builds' fields differ on these meshes; icoFoam
