@@ -85,7 +85,7 @@ fi
 # -mean that averaged the writes' RMS errors instead would be 6-11 % off)
 avg=1000
 mkdir -p "$c/$avg"
-awk -v n="$n" '
+awk -v n="$n" -v avg="$avg" '
     FNR == 1 { inl = 0; k = 0; hdr = ""; tail = "" }
     inl == 0 { hdr = hdr $0 "\n"; if ($1 == "internalField") inl = 1; next }
     inl == 1 { hdr = hdr $0 "\n"; if ($0 == "(") inl = 2; next }
@@ -93,6 +93,7 @@ awk -v n="$n" '
     inl == 2 { gsub(/[()]/, ""); u[k] += $1; v[k] += $2; w[k] += $3; k++; next }
     inl == 3 { tail = tail $0 "\n" }
     END {
+        sub(/location +"[^"]*"/, "location    \"" avg "\"", hdr)
         printf "%s", hdr
         for (i = 0; i < k; i++) printf "(%.10g %.10g %.10g)\n", u[i] / n, v[i] / n, w[i] / n
         printf "%s", tail
