@@ -58,6 +58,9 @@ fail=0
 max_speed() {
     field_values "$1" | awk '{ s = sqrt($1 * $1 + $2 * $2); if (s > m) m = s } END { printf "%.6g\n", m }'
 }
+# max_over DIR...: the largest max |U| over the U files of the time
+# directories DIR
+max_over() { for t in "$@"; do max_speed "$t/U"; done | sort -g | tail -1; }
 # rel_l2 CASE_A CASE_B: relative L2 of U at t = 0.5 (foamCompare)
 rel_l2() { "$TOOLDIR/foamCompare" "$1" 0.5 "$2" 0.5 U | awk '$1 == "U" { print $4 }'; }
 
@@ -88,7 +91,7 @@ for spec in 1000:199 10000:1708 100000:15491; do
     grep -q "is stretched $ar:1 .*anisotropicCells on (auto" "$c/log.umppmFoam" ||
         { echo "  FAIL aspect ratio $ar: the log does not say that anisotropicCells auto is on"; fail=1; }
     # max |U| over the tutorial's five writes t = 0.1 ... 0.5, not only the last
-    umax=$(for t in "$c"/0.[1-5]; do max_speed "$t/U"; done | sort -g | tail -1)
+    umax=$(max_over "$c"/0.[1-5])
     nw=$(find "$c" -maxdepth 1 -name '0.[1-5]' | wc -l)
     echo "aspect ratio $ar: max |U| over the $nw writes $umax, at t = 0.5 $(max_speed "$c/0.5/U") (icoFoam $(max_speed "$c/ico/0.5/U")); U vs converged:" \
         "umppmFoam $(rel_l2 "$c" "$c/ref"), icoFoam $(rel_l2 "$c/ico" "$c/ref"); umppmFoam vs icoFoam $(rel_l2 "$c" "$c/ico")" \
@@ -121,7 +124,7 @@ cp -r "$b/0" "$b/constant" "$b/system" "$b/ico/"
 run_in "$b/ico" icoFoam icoFoam
 if "$UMPPMFOAM" -case "$b" > "$b/log.umppmFoam" 2>&1; then
     writes=$(find "$b" -maxdepth 1 -name '0.*' | wc -l)
-    umax=$(for t in "$b"/0.*; do max_speed "$t/U"; done | sort -g | tail -1)
+    umax=$(max_over "$b"/0.*)
     co=$(awk '/^Courant/ { if ($6 > m) m = $6 } END { print m + 0 }' "$b/log.umppmFoam")
     ico=$(awk '/^Courant/ { if ($6 > m) m = $6 } END { print m + 0 }' "$b/ico/log.icoFoam")
     check_range "graded 10:1 toward the walls, deltaT 0.0005: writes" "$writes" 20 20

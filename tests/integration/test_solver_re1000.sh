@@ -85,19 +85,15 @@ fi
 # -mean that averaged the writes' RMS errors instead would be 6-11 % off)
 avg=1000
 mkdir -p "$c/$avg"
-awk -v n="$n" -v avg="$avg" '
-    FNR == 1 { inl = 0; k = 0; hdr = ""; tail = "" }
-    inl == 0 { hdr = hdr $0 "\n"; if ($1 == "internalField") inl = 1; next }
-    inl == 1 { hdr = hdr $0 "\n"; if ($0 == "(") inl = 2; next }
-    inl == 2 && $0 == ")" { inl = 3 }
-    inl == 2 { gsub(/[()]/, ""); u[k] += $1; v[k] += $2; w[k] += $3; k++; next }
-    inl == 3 { tail = tail $0 "\n" }
-    END {
-        sub(/location +"[^"]*"/, "location    \"" avg "\"", hdr)
-        printf "%s", hdr
-        for (i = 0; i < k; i++) printf "(%.10g %.10g %.10g)\n", u[i] / n, v[i] / n, w[i] / n
-        printf "%s", tail
-    }' $(for t in $times; do echo "$c/$t/U"; done) > "$c/$avg/U"
+last=$c/$(echo "$times" | tail -1)/U
+cells=$(field_values "$last" | wc -l)
+{
+    sed -n '1,/^($/p' "$last" | sed "s/^\( *location *\).*/\1\"$avg\";/"
+    for t in $times; do field_values "$c/$t/U"; done |
+        awk -v n="$n" -v m="$cells" '{ k = (NR - 1) % m; u[k] += $1; v[k] += $2; w[k] += $3 }
+            END { for (k = 0; k < m; k++) printf "(%.10g %.10g %.10g)\n", u[k] / n, v[k] / n, w[k] / n }'
+    sed -n '/^)$/,$p' "$last"
+} > "$c/$avg/U"
 read -r fu fv <<< "$(ghia "$c" "$avg")"
 echo "the field averaged by awk: u $fu, v $fv"
 check_below "|ghiaCompare -mean u / the awk-averaged field's u - 1|" \
