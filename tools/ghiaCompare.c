@@ -124,6 +124,13 @@ static int sample(const mesh2d *m, const double *uc, const double *gx, const dou
     return 1;
 }
 
+/* One line of the table: the RMS and max errors of u on x = 0.5 and of v
+ * on y = 0.5. */
+static void print_row(const char *name, const char *when, const sampled smp[2])
+{
+    printf("%-40s %8s %9.5f %9.5f %9.5f %9.5f\n", name, when, smp[0].rms, smp[0].max, smp[1].rms, smp[1].max);
+}
+
 static int run_case(const char *c, const char *tname, const profile ref[2], double Ulid, int profiles,
                     sampled smp[2])
 {
@@ -174,7 +181,7 @@ static int run_case(const char *c, const char *tname, const profile ref[2], doub
         if (!sample(m, uc, gx, gy, bb, Ulid, k, &ref[k], &smp[k]))
             goto out;
     }
-    printf("%-40s %8s %9.5f %9.5f %9.5f %9.5f\n", c, tname, smp[0].rms, smp[0].max, smp[1].rms, smp[1].max);
+    print_row(c, tname, smp);
     if (profiles)
         for (int k = 0; k < 2; k++)
             for (int i = 0; i < ref[k].n; i++)
@@ -251,10 +258,9 @@ int main(int argc, char **argv)
                 avg[k].val[j] /= n;
             profile_errors(&ref[k], avg[k].val, &avg[k].rms, &avg[k].max);
         }
-        double e[4] = {avg[0].rms, avg[0].max, avg[1].rms, avg[1].max};
         char what[32];
         snprintf(what, sizeof what, "%d times", n);
-        printf("%-40s %8s %9.5f %9.5f %9.5f %9.5f\n", "mean", what, e[0], e[1], e[2], e[3]);
+        print_row("mean", what, avg);
     }
     return rc;
 }
