@@ -2237,15 +2237,15 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
             wsum += wa;
             for (int q = 0; q < nv; q++)
                 sum[q] += wa * (w->gv[q][cand[a]] + (fc[a][q] - fjj[a][q]));
-        } else { /* 1/d^2, summed in the order of its first version */
+        } else { /* 1/d^2, each term added in the order of its first
+                  * version, so its results stay the same to the bit */
             double wa = 1 / (cd[a] + 1e-6 * m->area[c]);
             wsum += wa;
-            for (int q = 0; q < nv; q++)
+            for (int q = 0; q < nv; q++) {
                 sum[q] += wa * fc[a][q];
-            for (int q = 0; q < nv; q++)
                 sum[q] += -wa * fjj[a][q];
-            for (int q = 0; q < nv; q++)
                 sum[q] += wa * w->gv[q][cand[a]];
+            }
         }
     }
     for (int q = 0; q < nv; q++)
