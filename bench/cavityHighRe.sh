@@ -37,9 +37,7 @@ while [ $# -gt 0 ]; do
 done
 write=${write:-$endTime}
 make -C "$top" -s >/dev/null
-export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
-ex=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam/cavity/cavity
-[ -d "$ex" ] || { echo "no $ex (openfoam-examples)" >&2; exit 1; }
+. "$top/bench/cases.sh" # cavity_case, setEntry; exports WM_PROJECT_DIR
 work=${work:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-highRe.XXXXXX")}
 mkdir -p "$work"
 printf "# cavity Re %s, t = %s, lid Courant number 0.5, one thread; errors against Ghia et al. (1982); work %s\n" \
@@ -49,17 +47,13 @@ printf "%5s %-12s %8s %8s %8s %8s %9s %10s %10s\n" n run u_rms u_max v_rms v_max
 for n in $ns; do
     base=$work/mesh$n
     if [ ! -f "$base/constant/polyMesh/owner" ]; then
-        rm -rf "$base" && cp -r "$ex" "$base"
-        (cd "$base" &&
-            sed -i -E "s/\( *20 +20 +1 *\)/($n $n 1)/" system/blockMeshDict &&
-            grep -q "($n $n 1)" system/blockMeshDict &&
-            foamDictionary system/blockMeshDict -entry scale -set 1 > /dev/null &&
-            foamDictionary constant/transportProperties -entry nu -set "[0 2 -1 0 0 0 0] $(awk -v r="$Re" 'BEGIN { print 1 / r }')" > /dev/null &&
-            foamDictionary system/controlDict -entry deltaT -set "$(awk -v n="$n" 'BEGIN { print 0.5 / n }')" > /dev/null &&
-            foamDictionary system/controlDict -entry endTime -set "$endTime" > /dev/null &&
-            foamDictionary system/controlDict -entry writeControl -set runTime > /dev/null &&
-            foamDictionary system/controlDict -entry writeInterval -set "$write" > /dev/null &&
-            blockMesh > log.blockMesh 2>&1) || { echo "mesh $n failed" >&2; exit 1; }
+        rm -rf "$base"
+        (cavity_case "$base" "$n" "$(awk -v r="$Re" 'BEGIN { print 1 / r }')" &&
+            setEntry "$base/system/controlDict" deltaT "$(awk -v n="$n" 'BEGIN { print 0.5 / n }')" &&
+            setEntry "$base/system/controlDict" endTime "$endTime" &&
+            setEntry "$base/system/controlDict" writeControl runTime &&
+            setEntry "$base/system/controlDict" writeInterval "$write" &&
+            cd "$base" && blockMesh > log.blockMesh 2>&1) || { echo "mesh $n failed" >&2; exit 1; }
     fi
     for r in $runs; do
         d=$work/n$n-$r

@@ -28,7 +28,7 @@ while [ $# -gt 0 ]; do
     esac
     shift 2
 done
-. "$top/tutorials/RunFunctions" # setEntry; exports WM_PROJECT_DIR
+. "$top/bench/cases.sh" # cavity_case, setEntry; exports WM_PROJECT_DIR
 export OMP_NUM_THREADS=1
 make -C "$top" -s >/dev/null
 ex=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam
@@ -49,12 +49,8 @@ umppm() {
 }
 
 cav=$work/cavity40
-rm -rf "$cav" && cp -r "$ex/cavity/cavity" "$cav"
-for f in "$cav"/0/*.gz "$cav"/system/*.gz "$cav"/constant/*.gz; do [ -e "$f" ] && gunzip -f "$f"; done
-sed -i "s/(20 20 1)/(40 40 1)/" "$cav/system/blockMeshDict"
-grep -q '(40 40 1)' "$cav/system/blockMeshDict" || { echo "could not set the cavity's mesh" >&2; exit 1; }
-setEntry "$cav/system/blockMeshDict" scale 1
-setEntry "$cav/constant/transportProperties" nu "[0 2 -1 0 0 0 0] 0.001"
+rm -rf "$cav"
+cavity_case "$cav" 40 0.001 || exit 1
 setEntry "$cav/system/controlDict" endTime 40
 setEntry "$cav/system/controlDict" writeControl runTime
 setEntry "$cav/system/controlDict" writeInterval 0.5

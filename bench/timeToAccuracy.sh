@@ -15,7 +15,7 @@
 # cheapest run whose two RMS errors are both <= 0.01.
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
-. "$top/tutorials/RunFunctions" # setEntry; exports WM_PROJECT_DIR
+. "$top/bench/cases.sh" # cavity_case, setEntry; exports WM_PROJECT_DIR
 endTime=40 ico="40 80 160" ump="40 64 80" variants="UMPPMstar UMPPM" work="" out=""
 while [ $# -gt 0 ]; do
     case $1 in
@@ -29,8 +29,6 @@ while [ $# -gt 0 ]; do
             "[-variants \"UMPPMstar UMPPM\"] [-work DIR] [-o FILE]" >&2; exit 1 ;;
     esac
 done
-tut=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam/cavity/cavity
-[ -d "$tut" ] || { echo "no OpenFOAM cavity tutorial in $tut" >&2; exit 1; }
 make -C "$top" -s >/dev/null
 work=${work:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-tta.XXXXXX")}
 mkdir -p "$work"
@@ -38,11 +36,7 @@ table=$work/table.txt
 : > "$table"
 base() { # base DIR N
     rm -rf "$1"
-    cp -r "$tut" "$1"
-    for f in "$1"/0/*.gz "$1"/system/*.gz "$1"/constant/*.gz; do [ -e "$f" ] && gunzip -f "$f"; done
-    sed -i "s/(20 20 1)/($2 $2 1)/" "$1/system/blockMeshDict"
-    setEntry "$1/system/blockMeshDict" scale 1
-    setEntry "$1/constant/transportProperties" nu 0.001
+    cavity_case "$1" "$2" 0.001 || exit 1
     local dt steps
     dt=$(awk -v n="$2" 'BEGIN { printf "%.10g", 0.5 / n }')
     steps=$(awk -v t="$endTime" -v d="$dt" 'BEGIN { printf "%d", t / d + 0.5 }')

@@ -69,7 +69,7 @@
 # libscotchDecomp (decomposePar fails: -decompose scotch needs a real one).
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
-. "$top/tutorials/RunFunctions" # setEntry, logSteps; exports WM_PROJECT_DIR
+. "$top/bench/cases.sh" # cavity_case; setEntry, logSteps; exports WM_PROJECT_DIR
 allcases="cavity40 cavity80 cavity160 cavity320 taylorGreen6400 makeRunCavity"
 cases=$allcases stepsopt="" threads="1 2" work="" umppm="" decompose=simple out=""
 usage() {
@@ -87,7 +87,6 @@ while [ $# -gt 0 ]; do
     shift 2
 done
 die() { echo "vsOpenFOAM.sh: $*" >&2; exit 1; }
-tut=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam/cavity/cavity
 declare -A nsteps=([cavity40]=160 [cavity80]=80 [cavity160]=40 [cavity320]=20 [taylorGreen6400]=160 [makeRunCavity]=160)
 for c in $cases; do [ -n "${nsteps[$c]:-}" ] || die "unknown case '$c' (one of: $allcases)"; done
 for s in $stepsopt; do
@@ -100,7 +99,7 @@ for c in $cases; do
     case ${nsteps[$c]} in '' | *[!0-9]* | 0) die "-steps: '${nsteps[$c]}' for $c is not a positive integer" ;; esac
 done
 case $decompose in simple | scotch) ;; *) die "-decompose: simple or scotch, not '$decompose'" ;; esac
-case " $cases " in *" cavity"[0-9]*) [ -d "$tut" ] || die "no OpenFOAM cavity tutorial in $tut (package openfoam-examples)" ;; esac
+case " $cases " in *" cavity"[0-9]*) [ -d "$cavity_tutorial" ] || die "no OpenFOAM cavity tutorial in $cavity_tutorial (package openfoam-examples)" ;; esac
 if [ -z "$umppm" ]; then
     make -C "$top" -s >/dev/null || die "make in $top failed"
     umppm=$top/bin/umppmFoam
@@ -131,15 +130,6 @@ emit "# us/pc-st = CPU per particle-step (umppmFoam) or per cell-step (icoFoam);
 emit "# cases in $work"
 emit "$(printf "$fmt" case solver/config cells particles steps wall_s CPU_s us/pc-st startup_s RSS_MiB CPU/PCG CPU/GAMG wall/mpi2)"
 
-# base_cavity DIR N: the OpenFOAM tutorial, N x N, unit square, Re 1000
-base_cavity() {
-    cp -r "$tut/system" "$tut/constant" "$tut/0" "$1/"
-    find "$1" -name '*.gz' -exec gunzip -f {} +
-    grep -q '(20 20 1)' "$1/system/blockMeshDict" || die "$tut/system/blockMeshDict: no block (20 20 1)"
-    sed -i "s/(20 20 1)/($2 $2 1)/" "$1/system/blockMeshDict"
-    setEntry "$1/system/blockMeshDict" scale 1
-    setEntry "$1/constant/transportProperties" nu 0.001
-}
 
 # base_taylorGreen DIR n: bench/taylorGreen.sh's case (its dictionaries, -cfl 0.25)
 base_taylorGreen() {
@@ -218,7 +208,7 @@ for c in $cases; do
     cavity*)
         n=${c#cavity}
         dt=$(awk -v n="$n" 'BEGIN { printf "%.10g", 0.0125 * 40 / n }')
-        base_cavity "$b" "$n"
+        cavity_case "$b" "$n" 0.001 || exit 1
         what="OpenFOAM icoFoam/cavity tutorial, unit square, Re 1000, ${n}x$n quads"
         ;;
     taylorGreen6400)
