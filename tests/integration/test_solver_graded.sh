@@ -37,10 +37,15 @@
 #   - 20x20 cells graded 1000:1 toward the lid's downstream corner
 #     (simpleGrading (0.001 0.001 1), cells stretched 1000:1), deltaT
 #     0.005, t = 0.5: max |U| <= 1.05 and U within 0.45 of the converged
-#     flow (measured 0.947 and 0.281; icoFoam 0.284). Before boundedFits
+#     flow at t = 0.5 (measured 0.947 and 0.281; icoFoam 0.284; written
+#     every 0.025 s, max |U| reaches 1.050 at t = 0.45). Before boundedFits
 #     (MLS values and refills limited near their samples' range) the run
 #     diverged in the first step: MLS fits near the corner returned tens
-#     of times the lid speed (README, "Bounded fits").
+#     of times the lid speed (README, "Bounded fits");
+#   - printed, not asserted, because the issue's bound fails there: the
+#     same grading on 8x8 cells, written every 0.025 s, max |U| over the
+#     writes for umppmFoam (measured 1.168) and icoFoam (0.998) (README,
+#     "Graded toward the lid's downstream corner").
 # Needs UMPPMFOAM and TOOLDIR (foamCompare); OpenFOAM's blockMesh, icoFoam.
 set -eu -o pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -154,6 +159,24 @@ if "$UMPPMFOAM" -case "$k" > "$k/log.umppmFoam" 2>&1; then
         "$(rel_l2 "$k" "$k/ref")" 0.45
 else
     echo "  FAIL graded 1000:1 toward the lid's corner: umppmFoam failed: $(grep -m1 'FATAL' "$k/log.umppmFoam" | cut -c1-200)"
+    fail=1
+fi
+
+# the known failure, printed: 8x8 cells graded toward the lid's corner
+e=$work/corner8
+tutorial_copy "$ex" "$e"
+sed -i 's/(20 20 1)/(8 8 1)/; s/simpleGrading (1 1 1)/simpleGrading (0.001 0.001 1)/' "$e/system/blockMeshDict"
+sed -i 's/^deltaT .*/deltaT 0.005;/; s/^writeInterval .*/writeInterval 5;/' "$e/system/controlDict"
+run_in "$e" blockMesh blockMesh
+mkdir -p "$e/ico"
+cp -r "$e/0" "$e/constant" "$e/system" "$e/ico/"
+run_in "$e/ico" icoFoam icoFoam
+if "$UMPPMFOAM" -case "$e" > "$e/log.umppmFoam" 2>&1; then
+    echo "8x8 graded 1000:1 toward the lid's corner, written every 0.025 s: max |U| umppmFoam" \
+        "$(max_over "$e"/0.*), icoFoam $(max_over "$e/ico"/0.*) (not asserted: the issue's bound 1.05 fails here," \
+        "README \"Graded toward the lid's downstream corner\")"
+else
+    echo "  FAIL 8x8 graded toward the lid's corner: umppmFoam failed: $(grep -m1 'FATAL' "$e/log.umppmFoam" | cut -c1-200)"
     fail=1
 fi
 
