@@ -44,8 +44,9 @@
 #     of times the lid speed (README, "Bounded fits");
 #   - printed, not asserted, because the issue's bound fails there: the
 #     same grading on 8x8 cells, written every 0.025 s, max |U| over the
-#     writes for umppmFoam (measured 1.168) and icoFoam (0.998) (README,
-#     "Graded toward the lid's downstream corner").
+#     writes for umppmFoam (measured 1.168 with gcc -O2; 0.866 in the
+#     clang ASan build, whose fields differ on these meshes) and icoFoam
+#     (0.998) (README, "Graded toward the lid's downstream corner").
 # Needs UMPPMFOAM and TOOLDIR (foamCompare); OpenFOAM's blockMesh, icoFoam.
 set -eu -o pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -173,8 +174,8 @@ cp -r "$e/0" "$e/constant" "$e/system" "$e/ico/"
 run_in "$e/ico" icoFoam icoFoam
 if "$UMPPMFOAM" -case "$e" > "$e/log.umppmFoam" 2>&1; then
     echo "8x8 graded 1000:1 toward the lid's corner, written every 0.025 s: max |U| umppmFoam" \
-        "$(max_over "$e"/0.*), icoFoam $(max_over "$e/ico"/0.*) (not asserted: the issue's bound 1.05 fails here," \
-        "README \"Graded toward the lid's downstream corner\")"
+        "$(max_over "$e"/0.*), icoFoam $(max_over "$e/ico"/0.*) (not asserted: gcc -O2 builds exceed the issue's" \
+        "bound 1.05 here, README \"Graded toward the lid's downstream corner\")"
 else
     echo "  FAIL 8x8 graded toward the lid's corner: umppmFoam failed: $(grep -m1 'FATAL' "$e/log.umppmFoam" | cut -c1-200)"
     fail=1
