@@ -130,7 +130,6 @@ emit "# us/pc-st = CPU per particle-step (umppmFoam) or per cell-step (icoFoam);
 emit "# cases in $work"
 emit "$(printf "$fmt" case solver/config cells particles steps wall_s CPU_s us/pc-st startup_s RSS_MiB CPU/PCG CPU/GAMG wall/mpi2)"
 
-
 # base_taylorGreen DIR n: bench/taylorGreen.sh's case (its dictionaries, -cfl 0.25)
 base_taylorGreen() {
     mkdir -p "$1/system" "$1/constant"

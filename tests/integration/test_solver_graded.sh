@@ -70,6 +70,19 @@ max_over() { for t in "$@"; do max_speed "$t/U"; done | sort -g | tail -1; }
 # rel_l2 CASE_A CASE_B: relative L2 of U at t = 0.5 (foamCompare)
 rel_l2() { "$TOOLDIR/foamCompare" "$1" 0.5 "$2" 0.5 U | awk '$1 == "U" { print $4 }'; }
 
+# with_icoFoam DIR: icoFoam's run of the case in DIR/ico
+with_icoFoam() {
+    mkdir -p "$1/ico"
+    cp -r "$1/0" "$1/constant" "$1/system" "$1/ico/"
+    run_in "$1/ico" icoFoam icoFoam
+}
+# with_reference DIR NAME: the converged flow NAME of $refdir at t = 0.5 in DIR/ref
+with_reference() {
+    mkdir -p "$1/ref/0.5"
+    cp -r "$1/constant" "$1/system" "$1/ref/"
+    cp "$refdir/$2/U" "$1/ref/0.5/U"
+}
+
 # graded_case DIR GRADING: the tutorial cavity on 8x8 cells graded in x,
 # with icoFoam's run in DIR/ico and the converged flow in DIR/ref
 graded_case() {
@@ -78,11 +91,8 @@ graded_case() {
     sed -i "s/^deltaT .*/deltaT 0.005;/" "$1/system/controlDict"
     grep -q "simpleGrading ($2 1 1)" "$1/system/blockMeshDict" || { echo "  FAIL: could not grade the mesh"; return 1; }
     run_in "$1" blockMesh blockMesh
-    mkdir -p "$1/ico" "$1/ref/0.5"
-    cp -r "$1/0" "$1/constant" "$1/system" "$1/ico/"
-    cp -r "$1/constant" "$1/system" "$1/ref/"
-    cp "$refdir/grading$2/U" "$1/ref/0.5/U"
-    run_in "$1/ico" icoFoam icoFoam
+    with_reference "$1" "grading$2"
+    with_icoFoam "$1"
 }
 
 for spec in 1000:199 10000:1708 100000:15491; do
@@ -125,9 +135,7 @@ sed -i 's/simpleGrading (1 1 1)/simpleGrading (((0.5 0.5 10) (0.5 0.5 0.1)) ((0.
 sed -i 's/^deltaT .*/deltaT 0.0005;/; s/^endTime .*/endTime 0.1;/; s/^writeControl .*/writeControl runTime;/;
         s/^writeInterval .*/writeInterval 0.005;/' "$b/system/controlDict"
 run_in "$b" blockMesh blockMesh
-mkdir -p "$b/ico"
-cp -r "$b/0" "$b/constant" "$b/system" "$b/ico/"
-run_in "$b/ico" icoFoam icoFoam
+with_icoFoam "$b"
 if "$UMPPMFOAM" -case "$b" > "$b/log.umppmFoam" 2>&1; then
     writes=$(find "$b" -maxdepth 1 -name '0.*' | wc -l)
     umax=$(max_over "$b"/0.*)
@@ -147,11 +155,8 @@ tutorial_copy "$ex" "$k"
 sed -i 's/simpleGrading (1 1 1)/simpleGrading (0.001 0.001 1)/' "$k/system/blockMeshDict"
 sed -i 's/^deltaT .*/deltaT 0.005;/' "$k/system/controlDict"
 run_in "$k" blockMesh blockMesh
-mkdir -p "$k/ico" "$k/ref/0.5"
-cp -r "$k/0" "$k/constant" "$k/system" "$k/ico/"
-cp -r "$k/constant" "$k/system" "$k/ref/"
-cp "$refdir/corner20/U" "$k/ref/0.5/U"
-run_in "$k/ico" icoFoam icoFoam
+with_reference "$k" corner20
+with_icoFoam "$k"
 if "$UMPPMFOAM" -case "$k" > "$k/log.umppmFoam" 2>&1; then
     echo "graded 1000:1 toward the lid's corner: U vs converged: umppmFoam $(rel_l2 "$k" "$k/ref")," \
         "icoFoam $(rel_l2 "$k/ico" "$k/ref"); umppmFoam vs icoFoam $(rel_l2 "$k" "$k/ico") (not asserted)"
@@ -169,9 +174,7 @@ tutorial_copy "$ex" "$e"
 sed -i 's/(20 20 1)/(8 8 1)/; s/simpleGrading (1 1 1)/simpleGrading (0.001 0.001 1)/' "$e/system/blockMeshDict"
 sed -i 's/^deltaT .*/deltaT 0.005;/; s/^writeInterval .*/writeInterval 5;/' "$e/system/controlDict"
 run_in "$e" blockMesh blockMesh
-mkdir -p "$e/ico"
-cp -r "$e/0" "$e/constant" "$e/system" "$e/ico/"
-run_in "$e/ico" icoFoam icoFoam
+with_icoFoam "$e"
 if "$UMPPMFOAM" -case "$e" > "$e/log.umppmFoam" 2>&1; then
     echo "8x8 graded 1000:1 toward the lid's corner, written every 0.025 s: max |U| umppmFoam" \
         "$(max_over "$e"/0.*), icoFoam $(max_over "$e/ico"/0.*) (not asserted: gcc -O2 builds exceed the issue's" \
