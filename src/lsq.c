@@ -46,6 +46,12 @@ ump_status lsq_build(const mesh2d *m, lsq_grad **out, ump_err *err)
 
 ump_status lsq_build_weighted(const mesh2d *m, int weighted, lsq_grad **out, ump_err *err)
 {
+    return lsq_build_walls(m, weighted, NULL, out, err);
+}
+
+ump_status lsq_build_walls(const mesh2d *m, int weighted, const unsigned char *walls, lsq_grad **out,
+                           ump_err *err)
+{
     *out = NULL;
     lsq_grad *g = ump_alloc_array(1, sizeof *g);
     UMP_CHECK(g, err, UMP_ERR_NOMEM, "lsq: out of memory");
@@ -74,6 +80,20 @@ ump_status lsq_build_weighted(const mesh2d *m, int weighted, lsq_grad **out, ump
             }
             double w = weighted ? 1 / r2 : 1.0; /* w_j = 1/|d_j|^2 or 1 */
             mxx += w * dx * dx;                 /* M_P = sum_j w_j d_j d_j^T, Eq. 26 */
+            mxy += w * dx * dy;
+            myy += w * dy * dy;
+        }
+        /* walls: boundary faces where phi has the owner's value (zero normal
+         * gradient), as OpenFOAM's leastSquares takes a zeroGradient face:
+         * d_f = x_f - x_P with phi_f - phi_P = 0, so the face adds to M_P
+         * and nothing to the sum (lsq_gradient is unchanged) */
+        for (ump_idx a = walls ? m->cell_face_off[c] : 0; walls && a < m->cell_face_off[c + 1]; a++) {
+            ump_idx f = m->cell_faces[a];
+            if (f < m->ninternal || !walls[f - m->ninternal])
+                continue;
+            double dx = (m->fx[f] - m->cx[c]) / h, dy = (m->fy[f] - m->cy[c]) / h;
+            double w = weighted ? 1 / (dx * dx + dy * dy) : 1.0;
+            mxx += w * dx * dx;
             mxy += w * dx * dy;
             myy += w * dy * dy;
         }

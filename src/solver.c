@@ -122,6 +122,7 @@ typedef struct sol_setup {
     const mesh2d *m;
     sol_settings set;
     lsq_grad *g;
+    lsq_grad *gw;              /* anisotropicCells: Eq. 26 with the walls (wall_faces_build) */
     ppe *pe;
     /* boundary conditions per boundary face b = f - ninternal */
     unsigned char *u_kind;
@@ -156,6 +157,12 @@ typedef struct sol_setup {
      * laplacian CPM4 keeps CPM there) */
     unsigned char *st_bnd;
     ump_idx *pd_off, *pd_face; /* per cell [ncells+1]: its fixed-pressure boundary faces */
+    /* anisotropicCells: the boundary faces where the PPE's condition is
+     * Neumann with a prescribed flux (velocity prescribed or symmetry, p
+     * not fixed), flagged per boundary face and listed per cell */
+    unsigned char *wall;       /* [nb] */
+    ump_idx *wf_off, *wf_face;
+    ump_idx wf_max;            /* most such faces of one stencil's cells */
     /* faces whose u* is interpolated (not fixed, not symmetry), by owner */
     ump_idx *of_off, *of_face;
 } sol_setup;
@@ -364,6 +371,7 @@ void sol_free(sol **pS)
     part_bins_free(&st->bins);
     part_boundary_free(&st->bp);
     lsq_free(&su->g);
+    lsq_free(&su->gw);
     ppe_free(&su->pe);
     lsolve_rows_free(&st->kry);
     for (int k = 0; su->timed && k < su->ntimed; k++) {
@@ -378,7 +386,7 @@ void sol_free(sol **pS)
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
                    st->av, st->cnt_cell, st->pib, st->fluxb, st->pf0, st->gpx, st->gpy, st->empty,
                    st->fu, st->fv, st->fT, st->pout, st->fluxe, st->q, st->fz, st->pfprev, st->pfphi,
-                   su->pd_off, su->pd_face, st->bpu0, st->bpv0};
+                   su->pd_off, su->pd_face, st->bpu0, st->bpv0, su->wall, su->wf_off, su->wf_face};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
     if (S->work)
@@ -1064,6 +1072,48 @@ static ump_status dirichlet_faces_build(sol_setup *su, ump_err *err)
     return UMP_OK;
 }
 
+/* anisotropicCells: the walls of the pressure correction (docs/METHOD.md
+ * section 8, "Walls in the correction"): boundary faces whose flux is
+ * prescribed (velocity fixed, symmetry or slip) and whose pressure is not,
+ * where the PPE (Eq. 25) holds the normal gradient of p at zero; flagged,
+ * listed per cell (count -> prefix sum -> fill), and Eq. 26 with them for
+ * the mesh velocity of Eq. 36 (su->gw). */
+static ump_status wall_faces_build(sol_setup *su, ump_err *err)
+{
+    const mesh2d *m = su->m;
+    ump_idx nc = m->ncells, ni = m->ninternal, nb = m->nfaces - ni;
+    if (!(su->wall = ump_alloc_array((size_t)nb + 1, 1)) ||
+        !(su->wf_off = ump_alloc_array((size_t)nc + 1, sizeof *su->wf_off)))
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the wall faces");
+    for (ump_idx b = 0; b < nb; b++)
+        su->wall[b] = !su->p_dir[ni + b] && (su->u_kind[b] == BU_FIXED || su->u_kind[b] == BU_SYMMETRY);
+    for (int pass = 0; pass < 2; pass++) {
+        ump_idx k = 0;
+        for (ump_idx c = 0; c < nc; c++) {
+            su->wf_off[c] = k;
+            for (ump_idx a = m->cell_face_off[c]; a < m->cell_face_off[c + 1]; a++) {
+                ump_idx f = m->cell_faces[a];
+                if (f >= ni && su->wall[f - ni]) {
+                    if (pass)
+                        su->wf_face[k] = f;
+                    k++;
+                }
+            }
+        }
+        su->wf_off[nc] = k;
+        if (!pass && !(su->wf_face = ump_alloc_array((size_t)k + 1, sizeof *su->wf_face)))
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the wall faces");
+    }
+    su->wf_max = 0;
+    for (ump_idx c = 0; c < nc; c++) {
+        ump_idx t = 0;
+        for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++)
+            t += su->wf_off[su->st_cell[a] + 1] - su->wf_off[su->st_cell[a]];
+        su->wf_max = UMP_MAX(su->wf_max, t);
+    }
+    return lsq_build_walls(m, 1, su->wall, &su->gw, err);
+}
+
 ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U, const fld_field *pfld,
                       const fld_field *T, sol **out, ump_err *err)
 {
@@ -1186,8 +1236,11 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
         goto fail;
     if ((rc = dirichlet_faces_build(su, err)) != UMP_OK)
         goto fail;
+    if (s->anisotropic && (rc = wall_faces_build(su, err)) != UMP_OK)
+        goto fail;
     for (int t = 0; t < S->nthreads; t++) {
-        if ((rc = work_reserve(&S->work[t], 4 * (size_t)su->st_max + (size_t)su->pd_max + 64, err)) != UMP_OK)
+        size_t room = 4 * (size_t)su->st_max + (size_t)su->pd_max + (size_t)su->wf_max + 64;
+        if ((rc = work_reserve(&S->work[t], room, err)) != UMP_OK)
             goto fail;
         S->work[t].fit_margin = s->bounded_fits ? SOL_FIT_MARGIN : -1;
     }
@@ -1286,9 +1339,12 @@ static inline double mls_extent(const sol_setup *su, double e)
  * (of order h_y^2/h_x): on the graded cavities |grad p| of 10^3 where p is
  * uniform along the row, and the particles next to the wall left at 5 m/s;
  * a value fit of weighted gradients does not divide by the short offsets.
- * Its scratch is st->gx, st->gy, which then hold the LS gradient of p
- * (Step 10's Eq. 36 uses it). Returns the count of fits that fell back from
- * the quadratic basis. */
+ * The fit also takes a sample at each wall face of the stencil's cells
+ * (su->wf_face): the owner's gradient less its normal component, the
+ * zero normal gradient the PPE holds there (docs/METHOD.md section 8,
+ * "Walls in the correction"), so a particle at a wall is not corrected
+ * through it or away from it. Its scratch is st->gx, st->gy. Returns the
+ * count of fits that fell back from the quadratic basis. */
 static long particle_pressure_gradient(sol *S, const double *p, const double *pfv, double *gxo, double *gyo)
 {
     const sol_setup *su = &S->su;
@@ -1318,6 +1374,14 @@ static long particle_pressure_gradient(sol *S, const double *p, const double *pf
                 if (aniso) {
                     w->pv[nn] = cgx[q];
                     w->cy[nn++] = cgy[q];
+                    for (ump_idx d = su->wf_off[q]; d < su->wf_off[q + 1]; d++) {
+                        ump_idx f = su->wf_face[d];
+                        double gn = cgx[q] * m->nx[f] + cgy[q] * m->ny[f];
+                        w->h[nn] = m->fx[f] + sx - x;
+                        w->k[nn] = m->fy[f] + sy - y;
+                        w->pv[nn] = cgx[q] - gn * m->nx[f]; /* n . grad p = 0 (Eq. 25) */
+                        w->cy[nn++] = cgy[q] - gn * m->ny[f];
+                    }
                     continue;
                 }
                 w->pv[nn++] = p[q];
@@ -1366,20 +1430,21 @@ static double dominance_weight(const double *a, int n, double dnu)
 }
 
 /* boundedFits (docs/METHOD.md section 8, "Bounded fits"): v limited to the
- * range of the n sample values s widened by w->fit_margin of it (counted
- * in w->bounded); the MLS fits of [NSH16] Eqs. 28-35 and the carried
- * refill are not bounded by their samples, and on stencils whose cells
- * differ in size by 1000:1 they returned tens of times the lid speed. */
-static double bound_fit(sol_work *w, const double *s, size_t n, double v)
+ * range of the n sample values s widened by margin times it (counted in
+ * w->bounded; margin < 0: not limited); the MLS fits of [NSH16] Eqs. 28-35
+ * and the carried refill are not bounded by their samples, and on stencils
+ * whose cells differ in size by 1000:1 they returned tens of times the lid
+ * speed. */
+static double bound_fit(sol_work *w, const double *s, size_t n, double v, double margin)
 {
-    if (w->fit_margin < 0 || n == 0)
+    if (margin < 0 || n == 0)
         return v;
     double lo = s[0], hi = s[0];
     for (size_t j = 1; j < n; j++) {
         lo = s[j] < lo ? s[j] : lo;
         hi = s[j] > hi ? s[j] : hi;
     }
-    double e = w->fit_margin * (hi - lo);
+    double e = margin * (hi - lo);
     if (v < lo - e) {
         w->bounded++;
         return lo - e;
@@ -1504,18 +1569,35 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
              * from 2); with anisotropicCells wherever they exceed it. On
              * a cavity graded only 10:1 toward its walls, CPM's rows let
              * particles reach 84 times the lid speed at a small step; on
-             * stretched stencils u* overshot the lid from rest */
+             * stretched stencils u* overshot the lid from rest. With
+             * anisotropicCells a row kept (negatives below the share) is
+             * then made positive too where it still costs the dominance
+             * (blended by the same rule): near a wall dt nu/dx^2 reaches
+             * 10^4, and a row 1 % negative turned u^n = 0.005 into u* =
+             * 1.80 next to the lid's corner (README, "Graded toward the
+             * lid's downstream corner") */
             if (set->positive && lp->model == LAP_CPM) {
-                double th = set->anisotropic ? 1 : dominance_weight(w->c0, nn, dnu > dkap ? dnu : dkap);
+                double dmax = dnu > dkap ? dnu : dkap;
+                double th = set->anisotropic ? 1 : dominance_weight(w->c0, nn, dmax);
+                int made = 0;
                 if (th > 0) {
                     if (th < 1) /* CPM's row, for the blend below */
                         memcpy(w->cx, w->c0, (size_t)nn * sizeof *w->c0);
-                    int r = lap_positive_row(w->h, w->k, nn, sx, sy, SOL_POSITIVE_TAU, w->c0);
-                    if (r && th < 1)
+                    made = lap_positive_row(w->h, w->k, nn, sx, sy, SOL_POSITIVE_TAU, w->c0);
+                    if (made && th < 1)
                         for (int j = 0; j < nn; j++)
                             w->c0[j] = w->cx[j] + th * (w->c0[j] - w->cx[j]);
-                    w->positive_rows += r;
                 }
+                double td = set->anisotropic ? dominance_weight(w->c0, nn, dmax) : 0;
+                if (td > 0) {
+                    memcpy(w->cx, w->c0, (size_t)nn * sizeof *w->c0);
+                    int r = lap_positive_row(w->h, w->k, nn, sx, sy, 0, w->c0); /* tau 0: positive */
+                    if (r && td < 1)
+                        for (int j = 0; j < nn; j++)
+                            w->c0[j] = w->cx[j] + td * (w->c0[j] - w->cx[j]);
+                    made |= r;
+                }
+                w->positive_rows += made;
             }
             /* L phi_i = sum_j a_j (phi_j - phi_i); boundary particles are
              * Dirichlet data (Eq. 14): their a_j phi_j moves to the RHS */
@@ -1791,12 +1873,13 @@ static void sample_swap(sol_work *w, size_t a, size_t b, int nv)
 }
 
 /* MLS values (Eq. 32) at (x, y) from the gathered samples and their
- * gather_values; the boundary particle of face skip_bface (-1: none) is
+ * gather_values, each limited by bound_fit with margin; the boundary
+ * particle of face skip_bface (-1: none) is
  * left out by moving it to the end of the gathered arrays (the order of
  * the samples is immaterial to the fit). Contiguous arrays throughout, so
  * the offset, weight and dot-product loops vectorise. */
 static void mls_fit_values(sol_work *w, size_t cnt, double x, double y, double mdx, double mdy,
-                           ump_idx skip_bface, int nv, double *out)
+                           ump_idx skip_bface, int nv, double margin, double *out)
 {
     size_t n = cnt > MLS_MAX_SAMPLES ? MLS_MAX_SAMPLES : cnt;
     if (skip_bface >= 0) {
@@ -1825,7 +1908,7 @@ static void mls_fit_values(sol_work *w, size_t cnt, double x, double y, double m
 #pragma omp simd reduction(+ : sum)
         for (size_t j = 0; j < n; j++)
             sum += c0[j] * v[j];
-        out[q] = bound_fit(w, v, n, sum);
+        out[q] = bound_fit(w, v, n, sum, margin);
     }
 }
 
@@ -1885,8 +1968,14 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux
             double uv[2];
             gather_values(w, cnt, 2, f, g);
             if (uc) {
+                /* the centroid velocity (Eq. 32; Eq. 36's u*_P, the written
+                 * U) within its samples' range itself, not widened by the
+                 * margin (docs/METHOD.md section 8, "Bounded fits"): next to
+                 * the lid's corner of the graded cavities the fit sat at the
+                 * margin's -0.25 and 1.25 x the lid speed */
+                double cm = w->fit_margin < 0 ? -1.0 : 0.0;
                 mls_fit_values(w, cnt, m->cx[c], m->cy[c], mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]),
-                               -1, 2, uv);
+                               -1, 2, cm, uv);
                 uc[c] = uv[0];
                 vc[c] = uv[1];
             }
@@ -1900,7 +1989,7 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux
                     mdy = 0.5 * (mdy + m->dy[m->neigh[fa]]);
                 }
                 mls_fit_values(w, cnt, m->fx[fa], m->fy[fa], mls_extent(su, mdx), mls_extent(su, mdy),
-                               fa >= ni ? fa - ni : -1, 2, uv);
+                               fa >= ni ? fa - ni : -1, 2, w->fit_margin, uv);
                 flux[fa] = (uv[0] * m->nx[fa] + uv[1] * m->ny[fa]) * m->len[fa]; /* u_f . A_f, Eq. 20 */
             }
         }
@@ -2108,10 +2197,13 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
     move_particles(S, P->u, P->v, dt, &stats->walled);
     if (th > 0) /* the face values that belong to p^{n+1/2}, the next step's pold */
         memcpy(st->pfprev, st->pf, (size_t)m->nfaces * sizeof *st->pf);
-    /* mesh velocity, Eq. 36, with the LS gradient of Eq. 26 (with
-     * anisotropicCells particle_pressure_gradient left it in gx, gy) */
-    if (!su->set.anisotropic)
-        lsq_gradient(su->g, phi, st->gx, st->gy);
+    /* mesh velocity, Eq. 36, with the LS gradient of Eq. 26; with
+     * anisotropicCells its walls carry the owner's value (su->gw,
+     * docs/METHOD.md section 8, "Walls in the correction"): in a cell 6e-5
+     * wide at a wall the gradient of the neighbours alone is the bulk's,
+     * and u_P = u*_P - dt grad p_P left the wall at 1.14 x the lid speed
+     * where u*_P = 0 */
+    lsq_gradient(su->set.anisotropic ? su->gw : su->g, phi, st->gx, st->gy);
     int bal = su->set.buoyant && su->set.balanced;
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx c = 0; c < nc; c++) {
@@ -2249,7 +2341,7 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
         }
     }
     for (int q = 0; q < nv; q++)
-        out[q] = bound_fit(w, w->gv[q], cnt, sum[q] / wsum);
+        out[q] = bound_fit(w, w->gv[q], cnt, sum[q] / wsum, w->fit_margin);
     return 1;
 }
 
@@ -2338,7 +2430,7 @@ static ump_status step11_manage(sol *S, sol_stats *stats, ump_err *err)
                 }
                 gather_values(w, cnt, 1, f, g);
                 mls_fit_values(w, cnt, m->cx[c], m->cy[c], mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), -1, 1,
-                               &st->Tc[c]);
+                               w->fit_margin, &st->Tc[c]);
             }
         }
         UMP_CALL(work_collect(S, stats, err));

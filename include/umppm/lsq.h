@@ -26,6 +26,13 @@ typedef struct lsq_grad {
 ump_status lsq_build(const mesh2d *m, lsq_grad **out, ump_err *err); /* w_j = 1, Eq. 26 */
 /* weighted != 0: w_j = 1/|d_j|^2; 0: lsq_build. */
 ump_status lsq_build_weighted(const mesh2d *m, int weighted, lsq_grad **out, ump_err *err);
+/* The same, with the boundary faces f flagged in walls [nfaces - ninternal]
+ * (walls[f - ninternal] != 0) as samples at the face centre that carry the
+ * owner's value (zero normal gradient; OpenFOAM's leastSquares at a
+ * zeroGradient face): they enter M_P only, so lsq_gradient applies as it
+ * is. walls NULL: lsq_build_weighted. */
+ump_status lsq_build_walls(const mesh2d *m, int weighted, const unsigned char *walls, lsq_grad **out,
+                           ump_err *err);
 void lsq_free(lsq_grad **g);
 /* gx, gy [ncells] = gradient of phi [ncells] (stride 1). */
 void lsq_gradient(const lsq_grad *g, const double *phi, double *gx, double *gy);
