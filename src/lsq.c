@@ -11,7 +11,12 @@
  * cell stretched 199:1 the unweighted fit turns the curvature of p along
  * the long side into a gradient across the short one, of order
  * h_long^2 / h_short (a pressure uniform along a row gave dp/dx = -564);
- * weighted, that error is of order h_short.
+ * weighted, that error is of order h_short. lsq_build_walls also takes
+ * the boundary faces it is given as samples at their centres that carry
+ * the owner's value (a zeroGradient face in OpenFOAM's leastSquares; for
+ * the mesh velocity of Eq. 36 with anisotropicCells, docs/METHOD.md
+ * section 8, "Walls in the correction"): such a gradient is exact for
+ * linear fields along the walls, not across them.
  * M_P depends only on the mesh (Step 3 of the algorithm): lsq_build stores
  * g_j = M_P^-1 d_j per stencil entry once, and lsq_gradient is then one
  * pass over the stencil, allocation-free. The gradient is exact for fields

@@ -2,7 +2,8 @@
  * test_lsq.c -- the least-squares cell gradient, Eq. (26): exact for linear
  * fields on quad, triangle, hybrid (and distorted) meshes; the cyclic shifts
  * reproduce linear functions across periodic boundaries; observed order for a
- * smooth field under refinement; singular stencils refused.
+ * smooth field under refinement; singular stencils refused; walls as
+ * zero-gradient samples (lsq_build_walls).
  */
 #include "testmesh.h"
 #include "umppm/lsq.h"
@@ -48,6 +49,67 @@ static void test_linear_exact(void **state)
             free(gx);
             free(gy);
         }
+}
+
+/* lsq_build_walls: the faces given as walls are samples with the owner's
+ * value. On a uniform quad mesh, walls at x = const: a field linear along
+ * them (phi = 1 + 2 y) keeps its exact gradient in every cell; phi = x is
+ * exact away from them, and in a wall cell (not a corner) with weights
+ * 1/|d|^2 the fit over the five vertex neighbours and the wall sample at
+ * d = (-h/2, 0) gives M_xx = 1 + 2 (1/2) + 4 (1/4) = 3 and a sum of 2 (the
+ * wall adds no difference): d phi/dx = 2/3. */
+static void test_walls(void **state)
+{
+    (void)state;
+    pmesh *pm = NULL;
+    mesh2d *m = tm_mesh(TM_QUAD, 9, 0.0, 0, &pm);
+    size_t nc = (size_t)m->ncells, nb = (size_t)(m->nfaces - m->ninternal);
+    unsigned char *walls = calloc(nb + 1, 1);
+    int *nwall = calloc(nc, sizeof *nwall);
+    for (ump_idx f = m->ninternal; f < m->nfaces; f++)
+        if (fabs(fabs(m->nx[f]) - 1) < 1e-12) {
+            walls[f - m->ninternal] = 1;
+            nwall[m->owner[f]]++;
+        }
+    lsq_grad *g = NULL;
+    ump_err err;
+    if (lsq_build_walls(m, 1, walls, &g, &err) != UMP_OK)
+        fail_msg("%s", err.msg);
+    double *phi = malloc(sizeof(double) * nc), *gx = malloc(sizeof(double) * nc),
+           *gy = malloc(sizeof(double) * nc);
+    for (size_t c = 0; c < nc; c++)
+        phi[c] = 1.0 + 2.0 * m->cy[c];
+    lsq_gradient(g, phi, gx, gy);
+    for (size_t c = 0; c < nc; c++)
+        if (fabs(gx[c]) > 1e-12 || fabs(gy[c] - 2) > 1e-12)
+            fail_msg("cell %zu: gradient of 1 + 2y (%g, %g), not (0, 2)", c, gx[c], gy[c]);
+    for (size_t c = 0; c < nc; c++)
+        phi[c] = m->cx[c];
+    lsq_gradient(g, phi, gx, gy);
+    int checked = 0;
+    for (size_t c = 0; c < nc; c++) {
+        int corner = 0; /* a cell on a wall and on the top or bottom boundary */
+        for (ump_idx a = m->cell_face_off[c]; a < m->cell_face_off[c + 1]; a++) {
+            ump_idx f = m->cell_faces[a];
+            corner |= f >= m->ninternal && fabs(m->ny[f]) > 0.5;
+        }
+        if (nwall[c] && corner)
+            continue;
+        double want = nwall[c] ? 2.0 / 3.0 : 1.0;
+        if (fabs(gx[c] - want) > 1e-12 || fabs(gy[c]) > 1e-12)
+            fail_msg("cell %zu (walls %d): gradient of x (%g, %g), not (%g, 0)", c, nwall[c], gx[c], gy[c],
+                     want);
+        checked += nwall[c];
+    }
+    assert_int_equal(checked, 2 * 7); /* the wall cells of both walls, corners excepted */
+    lsq_free(&g);
+    mesh_free(&m);
+    pmesh_free(&pm);
+    free(walls);
+    free(nwall);
+    free(phi);
+    free(gx);
+    free(gy);
 }
 
 /* With shifts, the weights satisfy sum_k g_k (x_j + s_k - x_P)^T = I (the
@@ -247,6 +309,7 @@ int main(void)
         cmocka_unit_test(test_cyclic),
         cmocka_unit_test(test_convergence),
         cmocka_unit_test(test_singular_stencil),
+        cmocka_unit_test(test_walls),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
