@@ -1874,10 +1874,10 @@ static void sample_swap(sol_work *w, size_t a, size_t b, int nv)
 
 /* MLS values (Eq. 32) at (x, y) from the gathered samples and their
  * gather_values, each limited by bound_fit with margin; the boundary
- * particle of face skip_bface (-1: none) is
- * left out by moving it to the end of the gathered arrays (the order of
- * the samples is immaterial to the fit). Contiguous arrays throughout, so
- * the offset, weight and dot-product loops vectorise. */
+ * particle of face skip_bface (-1: none) is left out by moving it to the
+ * end of the gathered arrays (the order of the samples is immaterial to
+ * the fit). Contiguous arrays throughout, so the offset, weight and
+ * dot-product loops vectorise. */
 static void mls_fit_values(sol_work *w, size_t cnt, double x, double y, double mdx, double mdy,
                            ump_idx skip_bface, int nv, double margin, double *out)
 {
