@@ -6,7 +6,7 @@
 # (deletion and refill every step, so particle counts and order matter), and
 # the Taylor-Green vortex on 1600 periodic crossed triangles (UMPPM*),
 # 20 steps each (the cavity also with laplacian CPM4 and pressureTheta
-# 0.5), and on 25 600 triangles for 5 steps (threaded binning); a
+# 0.5, and graded 1000:1 toward its walls, so anisotropicCells is on), and on 25 600 triangles for 5 steps (threaded binning); a
 # 20 x 10 channel with the boundary conditions of issue 15 (inlet
 # totalPressure + pressureInletOutletVelocity with tangentialVelocity,
 # outlet outletInlet U + uniformFixedValue sine p, one wall slip), 10 steps.
@@ -42,6 +42,17 @@ cp -r "$top/tests/cases/cavity" "$cav4"
 sed -i 's/^endTime .*/endTime 0.1;/; s/^writeInterval .*/writeInterval 20;/' "$cav4/system/controlDict"
 printf 'UMPPM { laplacian CPM4; pressureTheta 0.5; }\n' >> "$cav4/system/fvSolution"
 (cd "$cav4" && blockMesh > log.blockMesh 2>&1) || { echo "FAIL: blockMesh"; exit 1; }
+
+# the same cavity graded 1000:1 toward all four walls (two-sided
+# simpleGrading): anisotropicCells auto on, with its wall samples, wall
+# faces in Eq. 36's gradient and dominance-checked positive rows
+cavw=$work/cavityWalls
+cp -r "$top/tests/cases/cavity" "$cavw"
+sed -i 's/^endTime .*/endTime 0.1;/; s/^writeInterval .*/writeInterval 20;/' "$cavw/system/controlDict"
+sed -i 's/simpleGrading (1 1 1)/simpleGrading (((0.5 0.5 1000) (0.5 0.5 0.001)) ((0.5 0.5 1000) (0.5 0.5 0.001)) 1)/' \
+    "$cavw/system/blockMeshDict"
+grep -q '0.5 0.5 1000' "$cavw/system/blockMeshDict" || { echo "FAIL: could not grade the cavity"; exit 1; }
+(cd "$cavw" && blockMesh > log.blockMesh 2>&1) || { echo "FAIL: blockMesh (graded)"; exit 1; }
 
 # Taylor-Green, 1600 crossed triangles, UMPPM*, 20 steps of 0.00625
 tg=$work/tg
@@ -121,7 +132,7 @@ boundaryField
 PF
 (cd "$bcs" && blockMesh > log.blockMesh 2>&1) || { echo "FAIL: blockMesh (bcs)"; exit 1; }
 
-for c in "$cav:0.1" "$cav4:0.1" "$tg:0.125" "$big:0.0078125" "$bcs:0.05"; do
+for c in "$cav:0.1" "$cav4:0.1" "$cavw:0.1" "$tg:0.125" "$big:0.0078125" "$bcs:0.05"; do
     dir=${c%%:*} t=${c##*:} name=$(basename "${c%%:*}")
     for n in 1 2; do
         r=$work/$name-$n
@@ -155,6 +166,8 @@ for c in "$cav:0.1" "$cav4:0.1" "$tg:0.125" "$big:0.0078125" "$bcs:0.05"; do
         fail=1
     fi
 done
+grep -q "anisotropicCells on (auto" "$work/cavityWalls-1/log" ||
+    { echo "FAIL: cavityWalls: the log does not say that anisotropicCells auto is on"; fail=1; }
 [ "$fail" = 0 ] || { echo "work dir kept: $work"; exit 1; }
 rm -rf "$work"
 echo "PASS"
