@@ -12,12 +12,12 @@
 #     auto) turns the anisotropic operators on (the log says so); each run
 #     reaches t = 0.5 with max |U| <= 1.05 x the lid speed at each of the
 #     tutorial's five writes t = 0.1 ... 0.5 (measured 0.666, 0.671, 0.629
-#     with gcc -O2, 0.671, 0.638, 0.689 in the clang ASan build; written
+#     with gcc -O2, 0.676, 0.636, 0.637 in the clang ASan build; written
 #     every 0.025 instead 0.715, 0.671, 0.629; before the walls in the
 #     correction the gcc 1 708:1 run reached 0.98 between the five writes),
 #     and U is within
 #     0.45 (relative L2) of the converged flow (measured 0.296, 0.271,
-#     0.291 with gcc -O2, ASAN_FIGURES in the clang ASan build: the two
+#     0.291 with gcc -O2, 0.309, 0.241, 0.238 in the clang ASan build: the two
 #     builds' fields differ on these meshes; icoFoam on the same meshes
 #     0.51, 0.43, 0.32). Before
 #     (the paper's operators, and the old anisotropicCells yes): max |U|
@@ -40,11 +40,13 @@
 #     cells graded 1000:1 toward the lid's downstream corner
 #     (simpleGrading (0.001 0.001 1)), 8x8 cells graded 10 000:1 that way,
 #     and 20x20 cells graded 1000:1 toward all four walls (two-sided
-#     simpleGrading); measured 0.946, 0.861, 0.901, 0.936 with gcc -O2
-#     (icoFoam 0.999, 0.998, 1.000, 0.999). Before the walls in the
+#     simpleGrading); measured 0.946, 0.861, 0.901, 0.936 with gcc -O2,
+#     0.947, 0.868, 0.902, 0.931 in the clang ASan build (icoFoam 0.999,
+#     0.998, 1.000, 0.999). Before the walls in the
 #     correction (README "Graded toward the lid's downstream corner"):
 #     1.050, 1.168, 1.093, 1.068. On the 20x20 corner mesh also U within
-#     0.45 of the converged flow at t = 0.5 (measured 0.275; icoFoam 0.284).
+#     0.45 of the converged flow at t = 0.5 (measured 0.275, ASan build
+#     0.287; icoFoam 0.284).
 #     Before boundedFits (MLS values and refills limited near their
 #     samples' range) the 20x20 corner run diverged in the first step
 #     (README, "Bounded fits").
