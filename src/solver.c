@@ -1339,13 +1339,16 @@ static inline double mls_extent(const sol_setup *su, double e)
  * (of order h_y^2/h_x): on the graded cavities |grad p| of 10^3 where p is
  * uniform along the row, and the particles next to the wall left at 5 m/s;
  * a value fit of weighted gradients does not divide by the short offsets.
- * The fit also takes a sample at each wall face of the stencil's cells
- * (su->wf_face): the owner's gradient less its normal component, the
- * zero normal gradient the PPE holds there (docs/METHOD.md section 8,
- * "Walls in the correction"), so a particle at a wall is not corrected
- * through it or away from it. Its scratch is st->gx, st->gy. Returns the
- * count of fits that fell back from the quadratic basis. */
-static long particle_pressure_gradient(sol *S, const double *p, const double *pfv, double *gxo, double *gyo)
+ * With walls != 0 the fit also takes a sample at each wall face of the
+ * stencil's cells (su->wf_face): the owner's gradient less its normal
+ * component, the zero normal gradient the PPE holds there (docs/METHOD.md
+ * section 8, "Walls in the correction"), so a particle at a wall is not
+ * corrected through it or away from it; only for a p whose normal gradient
+ * at walls is zero in the flow too (walls_zero_gradient). Its scratch is
+ * st->gx, st->gy. Returns the count of fits that fell back from the
+ * quadratic basis. */
+static long particle_pressure_gradient(sol *S, const double *p, const double *pfv, double *gxo, double *gyo,
+                                       int walls)
 {
     const sol_setup *su = &S->su;
     const mesh2d *m = su->m;
@@ -1374,7 +1377,7 @@ static long particle_pressure_gradient(sol *S, const double *p, const double *pf
                 if (aniso) {
                     w->pv[nn] = cgx[q];
                     w->cy[nn++] = cgy[q];
-                    for (ump_idx d = su->wf_off[q]; d < su->wf_off[q + 1]; d++) {
+                    for (ump_idx d = walls ? su->wf_off[q] : 0; walls && d < su->wf_off[q + 1]; d++) {
                         ump_idx f = su->wf_face[d];
                         double gn = cgx[q] * m->nx[f] + cgy[q] * m->ny[f];
                         w->h[nn] = m->fx[f] + sx - x;
@@ -1410,6 +1413,17 @@ static long particle_pressure_gradient(sol *S, const double *p, const double *pf
         }
     }
     return fb;
+}
+
+/* The pressure of the correction has a zero normal gradient at walls in
+ * the flow, not only in the PPE: without buoyancy, and with balanced
+ * buoyancy (its pi_d; pi_b balances the buoyancy force, whose normal part
+ * at a floor it carries). With the buoyancy source (Eq. 4 in the
+ * predictor) p holds the hydrostatic gradient up to the walls. With
+ * anisotropicCells only such a p takes the walls' samples. */
+static int walls_zero_gradient(const sol_setup *su)
+{
+    return su->set.anisotropic && (!su->set.buoyant || su->set.balanced);
 }
 
 /* positiveRows without anisotropicCells: the share of the positive row in a
@@ -1815,7 +1829,8 @@ static void path_pressure_kick(sol *S, sol_stats *stats)
     for (ump_idx c = 0; c < nc; c++)
         st->pold[c] = bal ? st->p[c] - st->pib[c] : st->p[c];
     /* us, vs are free until the predictor solve */
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pold, st->pfprev, st->us, st->vs);
+    stats->mls_fallbacks +=
+        (int)particle_pressure_gradient(S, st->pold, st->pfprev, st->us, st->vs, walls_zero_gradient(su));
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (size_t i = 0; i < n; i++) {
         st->gpx[i] = (bal ? st->gpx[i] : 0.0) + th * st->us[i];
@@ -2131,7 +2146,7 @@ static ump_status balance_buoyancy(sol *S, double dt, sol_stats *stats, ump_err 
         for (ump_idx c = 0; c < m->ncells; c++)
             st->pib[c] -= r;
     }
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pib, st->pf0, st->gpx, st->gpy);
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pib, st->pf0, st->gpx, st->gpy, 0);
     return UMP_OK;
 }
 
@@ -2190,7 +2205,7 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
         phi = st->pold;
         phif = st->pfphi;
     }
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, phi, phif, st->gpx, st->gpy);
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, phi, phif, st->gpx, st->gpy, walls_zero_gradient(su));
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (size_t i = 0; i < n; i++) {
         P->u[i] = st->us[i] - dt * st->gpx[i];
@@ -2206,7 +2221,7 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
      * wide at a wall the gradient of the neighbours alone is the bulk's,
      * and u_P = u*_P - dt grad p_P left the wall at 1.14 x the lid speed
      * where u*_P = 0 */
-    lsq_gradient(su->set.anisotropic ? su->gw : su->g, phi, st->gx, st->gy);
+    lsq_gradient(walls_zero_gradient(su) ? su->gw : su->g, phi, st->gx, st->gy);
     int bal = su->set.buoyant && su->set.balanced;
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx c = 0; c < nc; c++) {
