@@ -1073,11 +1073,14 @@ static ump_status dirichlet_faces_build(sol_setup *su, ump_err *err)
 }
 
 /* anisotropicCells: the walls of the pressure correction (docs/METHOD.md
- * section 8, "Walls in the correction"): boundary faces whose flux is
- * prescribed (velocity fixed, symmetry or slip) and whose pressure is not,
- * where the PPE (Eq. 25) holds the normal gradient of p at zero; flagged,
- * listed per cell (count -> prefix sum -> fill), and Eq. 26 with them for
- * the mesh velocity of Eq. 36 (su->gw). */
+ * section 8, "Walls in the correction"): faces of `wall` patches with a
+ * prescribed velocity, symmetry planes and slip walls, whose pressure is
+ * not fixed: there the PPE (Eq. 25) holds the normal gradient of p at zero
+ * and so does the flow. Not inlets (a prescribed velocity on a `patch`):
+ * the PPE's condition is the same there, but the flow's pressure keeps its
+ * gradient through them (a channel's pressure drop). Flagged, listed per
+ * cell (count -> prefix sum -> fill), and Eq. 26 with them for the mesh
+ * velocity of Eq. 36 (su->gw). */
 static ump_status wall_faces_build(sol_setup *su, ump_err *err)
 {
     const mesh2d *m = su->m;
@@ -1085,8 +1088,12 @@ static ump_status wall_faces_build(sol_setup *su, ump_err *err)
     if (!(su->wall = ump_alloc_array((size_t)nb + 1, 1)) ||
         !(su->wf_off = ump_alloc_array((size_t)nc + 1, sizeof *su->wf_off)))
         return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the wall faces");
-    for (ump_idx b = 0; b < nb; b++)
-        su->wall[b] = !su->p_dir[ni + b] && (su->u_kind[b] == BU_FIXED || su->u_kind[b] == BU_SYMMETRY);
+    for (ump_idx b = 0; b < nb; b++) {
+        int pp = m->face_patch[ni + b];
+        int wall_patch = m->pm && pp >= 0 && m->pm->patch[pp].kind == PMESH_WALL;
+        su->wall[b] = !su->p_dir[ni + b] &&
+                      (su->u_kind[b] == BU_SYMMETRY || (su->u_kind[b] == BU_FIXED && wall_patch));
+    }
     for (int pass = 0; pass < 2; pass++) {
         ump_idx k = 0;
         for (ump_idx c = 0; c < nc; c++) {
