@@ -1037,39 +1037,48 @@ static ump_status particles_build(sol_setup *su, sol_state *st, ump_err *err)
     return grow_particle_work(st, st->P->n, err);
 }
 
-/* Per cell, its fixed-pressure boundary faces (CSR), and the most of them
+/* Per cell, its boundary faces f with mask[f - ninternal] set (CSR, count
+ * -> prefix sum -> fill, in the cell's face order), and the most of them
  * one particle stencil holds (the work arrays' size). */
-static ump_status dirichlet_faces_build(sol_setup *su, ump_err *err)
+static ump_status boundary_face_lists(sol_setup *su, const unsigned char *mask, ump_idx **off, ump_idx **face,
+                                      ump_idx *max, const char *what, ump_err *err)
 {
     const mesh2d *m = su->m;
     ump_idx nc = m->ncells, ni = m->ninternal;
-    if (!(su->pd_off = ump_alloc_array((size_t)nc + 1, sizeof *su->pd_off)))
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the fixed-pressure faces");
+    if (!(*off = ump_alloc_array((size_t)nc + 1, sizeof **off)))
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the %s", what);
     for (int pass = 0; pass < 2; pass++) {
         ump_idx k = 0;
         for (ump_idx c = 0; c < nc; c++) {
-            su->pd_off[c] = k;
+            (*off)[c] = k;
             for (ump_idx a = m->cell_face_off[c]; a < m->cell_face_off[c + 1]; a++) {
                 ump_idx f = m->cell_faces[a];
-                if (f >= ni && su->p_dir[f]) {
+                if (f >= ni && mask[f - ni]) {
                     if (pass)
-                        su->pd_face[k] = f;
+                        (*face)[k] = f;
                     k++;
                 }
             }
         }
-        su->pd_off[nc] = k;
-        if (!pass && !(su->pd_face = ump_alloc_array((size_t)k, sizeof *su->pd_face)))
-            return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the fixed-pressure faces");
+        (*off)[nc] = k;
+        if (!pass && !(*face = ump_alloc_array((size_t)k + 1, sizeof **face)))
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the %s", what);
     }
-    su->pd_max = 0;
+    *max = 0;
     for (ump_idx c = 0; c < nc; c++) {
         ump_idx t = 0;
         for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++)
-            t += su->pd_off[su->st_cell[a] + 1] - su->pd_off[su->st_cell[a]];
-        su->pd_max = UMP_MAX(su->pd_max, t);
+            t += (*off)[su->st_cell[a] + 1] - (*off)[su->st_cell[a]];
+        *max = UMP_MAX(*max, t);
     }
     return UMP_OK;
+}
+
+/* Per cell, its fixed-pressure boundary faces. */
+static ump_status dirichlet_faces_build(sol_setup *su, ump_err *err)
+{
+    return boundary_face_lists(su, su->p_dir + su->m->ninternal, &su->pd_off, &su->pd_face, &su->pd_max,
+                               "fixed-pressure faces", err);
 }
 
 /* anisotropicCells: the walls of the pressure correction (docs/METHOD.md
@@ -1084,9 +1093,8 @@ static ump_status dirichlet_faces_build(sol_setup *su, ump_err *err)
 static ump_status wall_faces_build(sol_setup *su, ump_err *err)
 {
     const mesh2d *m = su->m;
-    ump_idx nc = m->ncells, ni = m->ninternal, nb = m->nfaces - ni;
-    if (!(su->wall = ump_alloc_array((size_t)nb + 1, 1)) ||
-        !(su->wf_off = ump_alloc_array((size_t)nc + 1, sizeof *su->wf_off)))
+    ump_idx ni = m->ninternal, nb = m->nfaces - ni;
+    if (!(su->wall = ump_alloc_array((size_t)nb + 1, 1)))
         return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the wall faces");
     for (ump_idx b = 0; b < nb; b++) {
         int pp = m->face_patch[ni + b];
@@ -1094,30 +1102,9 @@ static ump_status wall_faces_build(sol_setup *su, ump_err *err)
         su->wall[b] = !su->p_dir[ni + b] &&
                       (su->u_kind[b] == BU_SYMMETRY || (su->u_kind[b] == BU_FIXED && wall_patch));
     }
-    for (int pass = 0; pass < 2; pass++) {
-        ump_idx k = 0;
-        for (ump_idx c = 0; c < nc; c++) {
-            su->wf_off[c] = k;
-            for (ump_idx a = m->cell_face_off[c]; a < m->cell_face_off[c + 1]; a++) {
-                ump_idx f = m->cell_faces[a];
-                if (f >= ni && su->wall[f - ni]) {
-                    if (pass)
-                        su->wf_face[k] = f;
-                    k++;
-                }
-            }
-        }
-        su->wf_off[nc] = k;
-        if (!pass && !(su->wf_face = ump_alloc_array((size_t)k + 1, sizeof *su->wf_face)))
-            return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the wall faces");
-    }
-    su->wf_max = 0;
-    for (ump_idx c = 0; c < nc; c++) {
-        ump_idx t = 0;
-        for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++)
-            t += su->wf_off[su->st_cell[a] + 1] - su->wf_off[su->st_cell[a]];
-        su->wf_max = UMP_MAX(su->wf_max, t);
-    }
+    ump_status rc = boundary_face_lists(su, su->wall, &su->wf_off, &su->wf_face, &su->wf_max, "wall faces", err);
+    if (rc != UMP_OK)
+        return rc;
     return lsq_build_walls(m, 1, su->wall, &su->gw, err);
 }
 
@@ -1450,6 +1437,20 @@ static double dominance_weight(const double *a, int n, double dnu)
     return rho <= 1 ? 0 : rho >= 2 ? 1 : rho - 1;
 }
 
+/* The row w->c0 [nn] (offsets w->h, w->k) blended by t in (0, 1] toward
+ * lap_positive_row's positive row with share tau (t = 1: replaced);
+ * w->cx keeps the row before. Returns 1 if the row was changed. */
+static int positive_blend(sol_work *w, int nn, double sx, double sy, double tau, double t)
+{
+    if (t < 1)
+        memcpy(w->cx, w->c0, (size_t)nn * sizeof *w->c0);
+    int r = lap_positive_row(w->h, w->k, nn, sx, sy, tau, w->c0);
+    if (r && t < 1)
+        for (int j = 0; j < nn; j++)
+            w->c0[j] = w->cx[j] + t * (w->c0[j] - w->cx[j]);
+    return r;
+}
+
 /* boundedFits (docs/METHOD.md section 8, "Bounded fits"): v limited to the
  * range of the n sample values s widened by margin times it (counted in
  * w->bounded; margin < 0: not limited); the MLS fits of [NSH16] Eqs. 28-35
@@ -1600,24 +1601,10 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
             if (set->positive && lp->model == LAP_CPM) {
                 double dmax = dnu > dkap ? dnu : dkap;
                 double th = set->anisotropic ? 1 : dominance_weight(w->c0, nn, dmax);
-                int made = 0;
-                if (th > 0) {
-                    if (th < 1) /* CPM's row, for the blend below */
-                        memcpy(w->cx, w->c0, (size_t)nn * sizeof *w->c0);
-                    made = lap_positive_row(w->h, w->k, nn, sx, sy, SOL_POSITIVE_TAU, w->c0);
-                    if (made && th < 1)
-                        for (int j = 0; j < nn; j++)
-                            w->c0[j] = w->cx[j] + th * (w->c0[j] - w->cx[j]);
-                }
+                int made = th > 0 ? positive_blend(w, nn, sx, sy, SOL_POSITIVE_TAU, th) : 0;
                 double td = set->anisotropic ? dominance_weight(w->c0, nn, dmax) : 0;
-                if (td > 0) {
-                    memcpy(w->cx, w->c0, (size_t)nn * sizeof *w->c0);
-                    int r = lap_positive_row(w->h, w->k, nn, sx, sy, 0, w->c0); /* tau 0: positive */
-                    if (r && td < 1)
-                        for (int j = 0; j < nn; j++)
-                            w->c0[j] = w->cx[j] + td * (w->c0[j] - w->cx[j]);
-                    made |= r;
-                }
+                if (td > 0) /* tau 0: the positive row */
+                    made |= positive_blend(w, nn, sx, sy, 0, td);
                 w->positive_rows += made;
             }
             /* L phi_i = sum_j a_j (phi_j - phi_i); boundary particles are
