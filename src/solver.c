@@ -244,6 +244,8 @@ typedef struct sol_state {
     size_t wcap;
     double *x0, *y0, *us, *vs, *rhs_u, *rhs_v, *Ts, *rhs_T;
     double *gpx, *gpy;         /* a pressure gradient at the particles */
+    double *wdamp;             /* share of the correction a particle keeps next
+                                  to a wall (step6_rows, walls_zero_gradient) */
     ump_idx *cell0;
     unsigned char *keep;
     /* predictor system I + dt nu L in rows */
@@ -384,7 +386,7 @@ void sol_free(sol **pS)
                    su->ru_sx, su->ru_sy, su->st_bnd, su->of_off, su->of_face, st->p, st->pold, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
-                   st->av, st->cnt_cell, st->pib, st->fluxb, st->pf0, st->gpx, st->gpy, st->empty,
+                   st->av, st->cnt_cell, st->pib, st->fluxb, st->pf0, st->gpx, st->gpy, st->wdamp, st->empty,
                    st->fu, st->fv, st->fT, st->pout, st->fluxe, st->q, st->fz, st->pfprev, st->pfphi,
                    su->pd_off, su->pd_face, st->bpu0, st->bpv0, su->wall, su->wf_off, su->wf_face};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
@@ -991,7 +993,7 @@ static ump_status grow_particle_work(sol_state *st, size_t n, ump_err *err)
         return UMP_OK;
     size_t c = n > 2 * st->wcap ? n : 2 * st->wcap;
     double **arr[] = {&st->x0, &st->y0, &st->us, &st->vs, &st->rhs_u, &st->rhs_v, &st->Ts, &st->rhs_T,
-                      &st->gpx, &st->gpy};
+                      &st->gpx, &st->gpy, &st->wdamp};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
         double *q = ump_realloc_array(*arr[i], c, sizeof(double));
         if (!q)
@@ -1547,6 +1549,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
     const part_boundary *bp = &st->bp;
     int bal = buoyant && set->balanced;
     int kick = bal || set->p_theta > 0; /* gpx, gpy: grad pi_b and/or th grad p^{n-1/2} */
+    int damp = walls_zero_gradient(su);  /* st->wdamp, for step10_correct */
 #pragma omp parallel num_threads(S->nthreads)
     {
         sol_work *w = &S->work[thread_id()];
@@ -1610,7 +1613,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
             /* L phi_i = sum_j a_j (phi_j - phi_i); boundary particles are
              * Dirichlet data (Eq. 14): their a_j phi_j moves to the RHS */
             ump_idx pos = st->rp[i], dpos = -1, *ci = st->ci;
-            double *av = st->av, suma = 0, bu = 0, bv = 0, bT = 0;
+            double *av = st->av, suma = 0, bu = 0, bv = 0, bT = 0, swall = 0;
             int jj = 0, sorted = 1;
             for (size_t j = 0; j < cnt; j++) {
                 ump_idx r = w->ref[j];
@@ -1622,6 +1625,10 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                 double a = w->c0[jj++];
                 suma += a;
                 if (r < 0) {
+                    if (damp) {
+                        ump_idx fb = bp->face[-1 - r] - m->ninternal;
+                        swall += su->wall[fb] && su->u_kind[fb] == BU_FIXED ? a : 0;
+                    }
                     bu += a * bp->u[-1 - r];
                     bv += a * bp->v[-1 - r];
                     bT += a * bp->T[-1 - r];
@@ -1633,6 +1640,15 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                 }
             }
             av[dpos] = 1 + dnu * suma; /* I + dt nu L, Eq. 14 */
+            if (damp) {
+                /* Walls in the correction (e) (docs/METHOD.md section 8):
+                 * what this row leaves of an increment given to the fluid
+                 * particles and not to the no-slip walls in it, the share
+                 * of Eq. 10's correction the particle keeps
+                 * (step10_correct); 1 without walls in the row */
+                double k = (1 + dnu * (suma - swall)) / (1 + dnu * suma);
+                st->wdamp[i] = k > 1 ? 1 : k > 0 ? k : 0;
+            }
             if (dpos > st->rp[i])
                 sorted &= ci[dpos - 1] < ci[dpos];
             if (dpos + 1 < pos)
@@ -2199,11 +2215,17 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
         phi = st->pold;
         phif = st->pfphi;
     }
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, phi, phif, st->gpx, st->gpy, walls_zero_gradient(su));
+    int walls = walls_zero_gradient(su);
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, phi, phif, st->gpx, st->gpy, walls);
+    /* walls: the correction damped as the predictor's row would damp it
+     * next to a no-slip wall (st->wdamp, step6_rows; docs/METHOD.md section
+     * 8, "Walls in the correction" (e)) */
+    const double *kw = walls ? st->wdamp : NULL;
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (size_t i = 0; i < n; i++) {
-        P->u[i] = st->us[i] - dt * st->gpx[i];
-        P->v[i] = st->vs[i] - dt * st->gpy[i];
+        double k = kw ? dt * kw[i] : dt;
+        P->u[i] = st->us[i] - k * st->gpx[i];
+        P->v[i] = st->vs[i] - k * st->gpy[i];
     }
     /* r^{n+1} = r^n + dt u^{n+1} (Eq. 7) */
     move_particles(S, P->u, P->v, dt, &stats->walled);
