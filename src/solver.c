@@ -2002,16 +2002,8 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux
                  * elbow's outlets take u_P, and at deltaT/4 its p at t = 10
                  * went from 0.70 to 5.5 against the converged flow */
                 double cm = w->fit_margin < 0 || !su->set.anisotropic ? w->fit_margin : 0.0;
-                /* anisotropicCells: and with Eq. 35's scales, not the
-                 * fixed support of mlsSupport ("Walls in the correction"
-                 * (f)): an empty thin cell beside a wall has few samples
-                 * within two of its own extents, and its quadratic fit
-                 * swung between the range's ends from step to step (0 and
-                 * 0.97 at the lid's corner of the 40^2 corner mesh, where
-                 * the correction then wrote -1.02) */
-                double ex = su->set.anisotropic ? m->dx[c] : mls_extent(su, m->dx[c]);
-                double ey = su->set.anisotropic ? m->dy[c] : mls_extent(su, m->dy[c]);
-                mls_fit_values(w, cnt, m->cx[c], m->cy[c], ex, ey, -1, 2, cm, uv);
+                mls_fit_values(w, cnt, m->cx[c], m->cy[c], mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]),
+                               -1, 2, cm, uv);
                 uc[c] = uv[0];
                 vc[c] = uv[1];
             }
