@@ -12,6 +12,22 @@
 
 cavity_tutorial=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam/cavity/cavity
 
+# cavity_copy DIR: the cavity tutorial as it is (scale 0.1, nu 0.01, lid
+# speed 1: Re 10) copied into DIR, replacing it, gzipped files unpacked
+cavity_copy() {
+    [ -d "$cavity_tutorial" ] ||
+        { echo "no OpenFOAM cavity tutorial in $cavity_tutorial (package openfoam-examples)" >&2; return 1; }
+    rm -rf "$1" && cp -r "$cavity_tutorial" "$1" && find "$1" -name '*.gz' -exec gzip -d {} +
+}
+
+# max_speed FILE [FORMAT]: max |U| of the internal field of the
+# volVectorField FILE (printf FORMAT, default %.4g)
+max_speed() {
+    awk -v fmt="${2:-%.4g}" '/^internalField/ { f = 1; next }
+         f && /^\(/ && NF == 3 { gsub(/[()]/, ""); s = sqrt($1 * $1 + $2 * $2); if (s > m) m = s }
+         f && /^\)/ { exit } END { printf fmt, m }' "$1"
+}
+
 cavity_case() {
     local tut=$cavity_tutorial
     [ -d "$tut" ] || { echo "no OpenFOAM cavity tutorial in $tut (package openfoam-examples)" >&2; return 1; }

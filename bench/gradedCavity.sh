@@ -26,18 +26,11 @@ while [ $# -gt 0 ]; do
 done
 make -C "$top" -s >/dev/null
 bin=$top/bin
-export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
-ex=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam/cavity/cavity
-[ -d "$ex" ] || { echo "no $ex (openfoam-examples)" >&2; exit 1; }
+. "$top/bench/cases.sh"  # cavity_copy, max_speed
 work=${work:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-graded.XXXXXX")}
 mkdir -p "$work"
 quiet() { "$@" > /dev/null 2>&1 || { echo "failed: $* (in $PWD)" >&2; exit 1; }; }
-# tutorial CASE: a copy of OpenFOAM's cavity with its .gz files unpacked
-tutorial() { rm -rf "$1" && cp -r "$ex" "$1" && find "$1" -name '*.gz' -exec gzip -d {} +; }
-max_speed() {
-    awk '/^internalField/ { f = 1; next } f && /^\(/ && NF == 3 { gsub(/[()]/, ""); s = sqrt($1 * $1 + $2 * $2); if (s > m) m = s }
-         f && /^\)/ { exit } END { printf "%.4g", m }' "$1"
-}
+tutorial() { cavity_copy "$1" || exit 1; }
 rel() { "$bin/foamCompare" "$1" 0.5 "$2" 0.5 U | awk '$1 == "U" { print $4 }'; }
 cpu() { awk '/^ExecutionTime/ { t = $3 } END { print t }' "$1"; }
 if [ "$fine" != 0 ]; then

@@ -29,22 +29,15 @@ while [ $# -gt 0 ]; do
 done
 make -C "$top" -s >/dev/null
 bin=$top/bin
-export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
-ex=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam/cavity/cavity
-[ -d "$ex" ] || { echo "no $ex (openfoam-examples)" >&2; exit 1; }
+. "$top/bench/cases.sh"  # cavity_copy, max_speed
 work=${work:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-sweep.XXXXXX")}
 mkdir -p "$work"
-tutorial() { rm -rf "$1" && cp -r "$ex" "$1" && find "$1" -name '*.gz' -exec gzip -d {} +; }
 # max |U| over the time directories 0.* of case $1
 max_over() {
-    local m=0 f s
+    local f
     for f in "$1"/0.*/U; do
-        [ -f "$f" ] || continue
-        s=$(awk '/^internalField/ { f = 1; next } f && /^\(/ && NF == 3 { gsub(/[()]/, ""); s = sqrt($1 * $1 + $2 * $2); if (s > m) m = s }
-                 f && /^\)/ { exit } END { printf "%.4f", m }' "$f")
-        m=$(awk -v a="$m" -v b="$s" 'BEGIN { print (b > a ? b : a) }')
-    done
-    echo "$m"
+        if [ -f "$f" ]; then max_speed "$f" '%.4f\n'; fi
+    done | sort -g | tail -1
 }
 printf "%-5s %-16s %8s %10s %10s\n" N simpleGrading aspect umppmFoam icoFoam
 over=0 total=0
@@ -52,7 +45,7 @@ IFS='|' read -r -a glist <<< "$gradings"
 for n in $sizes; do
     for g in "${glist[@]}"; do
         c=$work/n${n}_$(echo "$g" | tr -d '()' | tr ' .' '_p')
-        tutorial "$c"
+        cavity_copy "$c" || exit 1
         sed -i "s/(20 20 1)/($n $n 1)/; s/simpleGrading (1 1 1)/simpleGrading ($g)/" "$c/system/blockMeshDict"
         sed -i "s/^deltaT .*/deltaT $dt;/; s/^writeControl .*/writeControl runTime;/; s/^writeInterval .*/writeInterval 0.025;/" \
             "$c/system/controlDict"

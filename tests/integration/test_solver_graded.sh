@@ -186,6 +186,20 @@ corner_case() {
     with_icoFoam "$1"
 }
 
+# run_umppm DIR LABEL: umppmFoam on the case DIR; says FAIL and returns 1
+# if it fails
+run_umppm() {
+    "$UMPPMFOAM" -case "$1" > "$1/log.umppmFoam" 2>&1 && return 0
+    echo "  FAIL $2: umppmFoam failed: $(grep -m1 'FATAL' "$1/log.umppmFoam" | cut -c1-200)"
+    return 1
+}
+# check_bounded DIR LABEL: 20 writes every 0.025 s, max |U| <= 1.05 x the
+# lid speed at each
+check_bounded() {
+    check_range "$2: writes every 0.025 s" "$(find "$1" -maxdepth 1 -name '0.*' | wc -l)" 20 20
+    check_range "$2: max |U| / lid speed over the writes" "$(max_over "$1"/0.*)" 0 1.05
+}
+
 # the meshes graded toward the lid's corners, each at every write
 two="(((0.5 0.5 1000) (0.5 0.5 0.001)) ((0.5 0.5 1000) (0.5 0.5 0.001)) 1)"
 for spec in "corner:20:(0.001 0.001 1):1000:1 toward the lid's downstream corner" \
@@ -196,14 +210,9 @@ for spec in "corner:20:(0.001 0.001 1):1000:1 toward the lid's downstream corner
     k=$work/$name
     label="${n}x$n graded $what"
     corner_case "$k" "$n" "$grading" || { fail=1; continue; }
-    if ! "$UMPPMFOAM" -case "$k" > "$k/log.umppmFoam" 2>&1; then
-        echo "  FAIL $label: umppmFoam failed: $(grep -m1 'FATAL' "$k/log.umppmFoam" | cut -c1-200)"
-        fail=1
-        continue
-    fi
+    run_umppm "$k" "$label" || { fail=1; continue; }
     echo "$label: max |U| over the writes umppmFoam $(max_over "$k"/0.*), icoFoam $(max_over "$k/ico"/0.*)"
-    check_range "$label: writes every 0.025 s" "$(find "$k" -maxdepth 1 -name '0.*' | wc -l)" 20 20
-    check_range "$label: max |U| / lid speed over the writes" "$(max_over "$k"/0.*)" 0 1.05
+    check_bounded "$k" "$label"
     if [ "$name" = corner ]; then
         with_reference "$k" corner20
         echo "$label: U vs converged: umppmFoam $(rel_l2 "$k" "$k/ref"), icoFoam $(rel_l2 "$k/ico" "$k/ref");" \
@@ -221,13 +230,8 @@ for spec in "x40:40:(1000 1 1):0.005:40x40 graded 1000:1 in x, deltaT 0.005" \
     IFS=: read -r name n grading dt label <<< "$spec"
     k=$work/$name
     corner_mesh "$k" "$n" "$grading" "$dt" || { fail=1; continue; }
-    if ! "$UMPPMFOAM" -case "$k" > "$k/log.umppmFoam" 2>&1; then
-        echo "  FAIL $label: umppmFoam failed: $(grep -m1 'FATAL' "$k/log.umppmFoam" | cut -c1-200)"
-        fail=1
-        continue
-    fi
-    check_range "$label: writes every 0.025 s" "$(find "$k" -maxdepth 1 -name '0.*' | wc -l)" 20 20
-    check_range "$label: max |U| / lid speed over the writes" "$(max_over "$k"/0.*)" 0 1.05
+    run_umppm "$k" "$label" || { fail=1; continue; }
+    check_bounded "$k" "$label"
 done
 
 [ "$fail" = 0 ] || { echo "work dir kept: $work"; exit 1; }
