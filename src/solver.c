@@ -191,6 +191,12 @@ typedef struct sol_setup {
  * converged one, 0.2 let the cavity graded 10:1 toward its walls reach
  * 1.11x the lid speed */
 #define SOL_REFILL_NOISE 0.15
+/* The interpolation error's pressure by the transpose of the fits
+ * (transpose_q): F of the 2 x 2 system sum_f |c_fj| n_f n_f^T + F I of a
+ * particle, against the O(1) of a particle that enters its cell's face
+ * fits fully; it caps the increment of one that hardly enters any (0.001
+ * and 0.02 ... 0.5 measured alike on the 8x8 graded cavity, README) */
+#define SOL_TQ_FLOOR 1.0e-3
 typedef struct sol_work {
     size_t cap;
     union {                    /* gathered positions (stencil shift applied) */
@@ -239,6 +245,16 @@ typedef struct sol_state {
        face values [nfaces] */
     double *pout, *fluxe, *q, *fz;
     int want_p;                /* this step computes pout (sol_want_pressure) */
+    int split;                 /* this step has computed q */
+    /* anisotropicCells (transpose_q): p_d for the particles' Eq. 10
+       [ncells], grad q . A_f [nfaces], and the face fits' coefficients of
+       Step 8 per cell: slots tq_off[c] ... + tq_len[c] of (particle, face,
+       coefficient) */
+    double *pd, *gq;
+    size_t *tq_off;
+    ump_idx *tq_len, *tq_ref, *tq_face;
+    double *tq_c;
+    size_t tq_cap;
     int have_flux;             /* flux holds a corrected (divergence-free) phi^n */
     /* per particle */
     size_t wcap;
@@ -246,6 +262,9 @@ typedef struct sol_state {
     double *gpx, *gpy;         /* a pressure gradient at the particles */
     double *wdamp;             /* share of the correction a particle keeps next
                                   to a wall (step6_rows, walls_zero_gradient) */
+    double *qa, *qb, *qc, *qx, *qy; /* transpose_q: the particle's 2 x 2 system
+                                  (a b; b c) and right-hand side, then its
+                                  increment in qx, qy */
     ump_idx *cell0;
     unsigned char *keep;
     /* predictor system I + dt nu L in rows */
@@ -387,6 +406,8 @@ void sol_free(sol **pS)
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
                    st->av, st->cnt_cell, st->pib, st->fluxb, st->pf0, st->gpx, st->gpy, st->wdamp, st->empty,
+                   st->qa, st->qb, st->qc, st->qx, st->qy, st->pd, st->gq, st->tq_off, st->tq_len, st->tq_ref,
+                   st->tq_face, st->tq_c,
                    st->fu, st->fv, st->fT, st->pout, st->fluxe, st->q, st->fz, st->pfprev, st->pfphi,
                    su->pd_off, su->pd_face, st->bpu0, st->bpv0, su->wall, su->wf_off, su->wf_face};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
@@ -993,7 +1014,7 @@ static ump_status grow_particle_work(sol_state *st, size_t n, ump_err *err)
         return UMP_OK;
     size_t c = n > 2 * st->wcap ? n : 2 * st->wcap;
     double **arr[] = {&st->x0, &st->y0, &st->us, &st->vs, &st->rhs_u, &st->rhs_v, &st->Ts, &st->rhs_T,
-                      &st->gpx, &st->gpy, &st->wdamp};
+                      &st->gpx, &st->gpy, &st->wdamp, &st->qa, &st->qb, &st->qc, &st->qx, &st->qy};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
         double *q = ump_realloc_array(*arr[i], c, sizeof(double));
         if (!q)
@@ -1128,7 +1149,7 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     if (!(S->work = ump_alloc_array((size_t)S->nthreads, sizeof *S->work)))
         goto nomem;
     double **cellarr[] = {&st->p, &st->pold, &st->uc, &st->vc, &st->usc, &st->vsc, &st->gx, &st->gy, &st->div,
-                          &st->fu, &st->fv, &st->fT, &st->pout, &st->q};
+                          &st->fu, &st->fv, &st->fT, &st->pout, &st->q, &st->pd};
     for (size_t i = 0; i < sizeof cellarr / sizeof cellarr[0]; i++)
         if (!(*cellarr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
             goto nomem;
@@ -1138,6 +1159,9 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
         !(st->gflux = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->fluxe = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(st->fz = ump_alloc_array((size_t)nf, sizeof(double))) ||
+        !(st->gq = ump_alloc_array((size_t)nf, sizeof(double))) ||
+        !(st->tq_off = ump_alloc_array((size_t)nc + 1, sizeof(size_t))) ||
+        !(st->tq_len = ump_alloc_array((size_t)nc, sizeof(ump_idx))) ||
         !(st->pf = ump_alloc_array((size_t)nf, sizeof(double))) ||
         !(su->p_dir = ump_alloc_array((size_t)nf, 1)) || !(su->u_kind = ump_alloc_array((size_t)nb, 1)) ||
         !(su->p_total = ump_alloc_array((size_t)nb, 1)) || !(su->p0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
@@ -2190,7 +2214,168 @@ static ump_status step9_pressure(sol *S, double dt, ump_err *err)
 
 /* ---- Step 10: correction ----------------------------------------------------- */
 
-static void step10_correct(sol *S, double dt, sol_stats *stats)
+/* anisotropicCells: the interpolation error's pressure q by the transpose
+ * of the fits (docs/METHOD.md section 8, "The interpolation error's
+ * pressure on stretched cells"). Step 9's p = p_d + q, q the potential of
+ * D eps / dt (interpolation_error). Eq. 10 gives every particle the whole
+ * -dt grad q at its position, yet a particle that hardly enters its cells'
+ * face fits of Step 8 hardly changes the fluxes that q corrects, so the
+ * same kick returns at the next step: one particle of a large cell beside
+ * thin ones gained 0.002 per step and reached twice the lid speed at
+ * deltaT 0.00002 (README, "Smaller steps on the 8x8 graded cavity"). Here
+ * each particle j gets q as it enters the fits, the transpose of Step 8's
+ * interpolation:
+ *     du_j = -(sum_f |c_fj| n_f n_f^T + F I)^-1 sum_f c_fj n_f dt (dq/dn)_f,
+ * c_fj particle j's coefficient in face f's fit (Eq. 32 at r*, where the
+ * particles still are), (dq/dn)_f the PPE's face gradient (Eq. 25), F =
+ * SOL_TQ_FLOOR. The MLS coefficients sum to 1, so a uniform face
+ * correction is returned whole. Deterministic with any thread count: the
+ * fits (parallel over cells) store their coefficients in per-cell slots,
+ * summed into the particles in cell order. Result in st->qx, st->qy. */
+static ump_status transpose_q(sol *S, double dt, ump_err *err)
+{
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    ump_idx nc = m->ncells, ni = m->ninternal;
+    size_t n = st->P->n;
+    const ump_idx *boff = st->bins.off;
+    ppe_face_gradient_flux(su->pe, st->q, st->fz, st->gq);
+    /* slots: a cell's fluid samples times the faces it fits */
+    st->tq_off[0] = 0;
+    for (ump_idx c = 0; c < nc; c++) {
+        size_t cnt = 0;
+        for (ump_idx r = su->ru_off[c]; r < su->ru_off[c + 1]; r++)
+            cnt += (size_t)(boff[su->ru_q1[r]] - boff[su->ru_q0[r]]);
+        st->tq_off[c + 1] = st->tq_off[c] + cnt * (size_t)(su->of_off[c + 1] - su->of_off[c]);
+    }
+    size_t need = st->tq_off[nc];
+    if (need > st->tq_cap || !st->tq_c) {
+        size_t cap = need + need / 2 + 1024;
+        ump_idx *r = ump_realloc_array(st->tq_ref, cap, sizeof *r);
+        if (!r)
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "correction: out of memory (%zu fit entries)", cap);
+        st->tq_ref = r;
+        ump_idx *f = ump_realloc_array(st->tq_face, cap, sizeof *f);
+        if (!f)
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "correction: out of memory (%zu fit entries)", cap);
+        st->tq_face = f;
+        double *cc = ump_realloc_array(st->tq_c, cap, sizeof *cc);
+        if (!cc)
+            return UMP_FAIL(err, UMP_ERR_NOMEM, "correction: out of memory (%zu fit entries)", cap);
+        st->tq_c = cc;
+        st->tq_cap = cap;
+    }
+#pragma omp parallel num_threads(S->nthreads)
+    {
+        sol_work *w = &S->work[thread_id()];
+#pragma omp for schedule(dynamic, 64)
+        for (ump_idx c = 0; c < nc; c++) {
+            st->tq_len[c] = 0;
+            if (w->rc != UMP_OK)
+                continue;
+            size_t cnt;
+            ump_err e;
+            ump_status rc = gather_cell(su, st, w, c, &cnt, &e);
+            if (rc != UMP_OK) {
+                work_fail(w, rc, &e);
+                continue;
+            }
+            size_t pos = st->tq_off[c];
+            /* the fits of mls_to_mesh: the same faces, samples and supports */
+            for (ump_idx a = su->of_off[c]; a < su->of_off[c + 1]; a++) {
+                ump_idx fa = su->of_face[a];
+                if (fa >= ni && velocity_prescribed(su, fa))
+                    continue;
+                double mdx = m->dx[c], mdy = m->dy[c];
+                if (fa < ni) {
+                    mdx = 0.5 * (mdx + m->dx[m->neigh[fa]]);
+                    mdy = 0.5 * (mdy + m->dy[m->neigh[fa]]);
+                }
+                int nn = offsets(w, cnt, m->fx[fa], m->fy[fa], fa >= ni ? fa - ni : -1);
+                mls_weights(w->h, w->k, nn, mls_extent(su, mdx), mls_extent(su, mdy), w->c0, NULL, NULL, NULL);
+                for (int j = 0; j < nn; j++)
+                    if (w->sref[j] >= 0) { /* fluid particles only */
+                        st->tq_ref[pos] = w->sref[j];
+                        st->tq_face[pos] = fa;
+                        st->tq_c[pos++] = w->c0[j];
+                    }
+            }
+            st->tq_len[c] = (ump_idx)(pos - st->tq_off[c]);
+        }
+    }
+    UMP_CALL(work_collect(S, NULL, err));
+    for (size_t i = 0; i < n; i++)
+        st->qa[i] = st->qb[i] = st->qc[i] = st->qx[i] = st->qy[i] = 0;
+    for (ump_idx c = 0; c < nc; c++) /* in cell order: the same sums with any thread count */
+        for (size_t e = st->tq_off[c]; e < st->tq_off[c] + (size_t)st->tq_len[c]; e++) {
+            ump_idx j = st->tq_ref[e], f = st->tq_face[e];
+            double cj = st->tq_c[e], ac = fabs(cj), nx = m->nx[f], ny = m->ny[f];
+            double g = dt * st->gq[f] / m->len[f]; /* dt dq/dn at the face */
+            st->qa[j] += ac * nx * nx;
+            st->qb[j] += ac * nx * ny;
+            st->qc[j] += ac * ny * ny;
+            st->qx[j] += cj * nx * g;
+            st->qy[j] += cj * ny * g;
+        }
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+    for (size_t i = 0; i < n; i++) {
+        double a = st->qa[i] + SOL_TQ_FLOOR, b = st->qb[i], d = st->qc[i] + SOL_TQ_FLOOR;
+        double det = a * d - b * b, bx = st->qx[i], by = st->qy[i];
+        st->qx[i] = -(d * bx - b * by) / det;
+        st->qy[i] = -(a * by - b * bx) / det;
+    }
+    return UMP_OK;
+}
+
+/* anisotropicCells: the mesh velocity u_P of Eq. 36 within the range of
+ * the corrected velocities of its stencil's samples (fluid particles and
+ * boundary particles), per component (docs/METHOD.md section 8, "The
+ * interpolation error's pressure on stretched cells"). In an empty thin
+ * cell at the lid both terms of u*_P - dt grad p_P are large and cancel
+ * imperfectly; with transpose_q the particles no longer carry grad q whole
+ * and that cell read 1.14 x the lid speed while every particle stayed
+ * below it (48^2 cavity graded (1000 1 1)). */
+static ump_status bound_cell_velocity(sol *S, ump_err *err)
+{
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    ump_idx nc = su->m->ncells;
+    const double *f[2] = {st->P->u, st->P->v}, *g[2] = {st->bp.u, st->bp.v};
+    double *out[2] = {st->uc, st->vc};
+#pragma omp parallel num_threads(S->nthreads)
+    {
+        sol_work *w = &S->work[thread_id()];
+#pragma omp for schedule(dynamic, 64)
+        for (ump_idx c = 0; c < nc; c++) {
+            if (w->rc != UMP_OK)
+                continue;
+            size_t cnt;
+            ump_err e;
+            ump_status rc = gather_cell(su, st, w, c, &cnt, &e);
+            if (rc != UMP_OK) {
+                work_fail(w, rc, &e);
+                continue;
+            }
+            if (!cnt)
+                continue;
+            gather_values(w, cnt, 2, f, g);
+            for (int q = 0; q < 2; q++) {
+                const double *v = w->gv[q];
+                double lo = v[0], hi = v[0];
+                for (size_t j = 1; j < cnt; j++) {
+                    lo = v[j] < lo ? v[j] : lo;
+                    hi = v[j] > hi ? v[j] : hi;
+                }
+                double u = out[q][c];
+                out[q][c] = u < lo ? lo : u > hi ? hi : u;
+            }
+        }
+    }
+    return work_collect(S, NULL, err);
+}
+
+static ump_status step10_correct(sol *S, double dt, sol_stats *stats, ump_err *err)
 {
     const sol_setup *su = &S->su;
     sol_state *st = &S->st;
@@ -2216,16 +2401,30 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
         phif = st->pfphi;
     }
     int walls = walls_zero_gradient(su);
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, phi, phif, st->gpx, st->gpy, walls);
+    /* walls: Eq. 10 with p_d, and q by the transpose of the fits */
+    int tq = walls && st->split;
+    const double *pg = phi;
+    if (tq) {
+        UMP_CALL(transpose_q(S, dt, err));
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+        for (ump_idx c = 0; c < nc; c++)
+            st->pd[c] = phi[c] - st->q[c];
+        pg = st->pd;
+    }
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, pg, phif, st->gpx, st->gpy, walls);
     /* walls: the correction damped as the predictor's row would damp it
      * next to a no-slip wall (st->wdamp, step6_rows; docs/METHOD.md section
-     * 8, "Walls in the correction" (e)) */
+     * 8, "Walls in the correction" (e)), q's part too */
     const double *kw = walls ? st->wdamp : NULL;
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (size_t i = 0; i < n; i++) {
         double k = kw ? dt * kw[i] : dt;
         P->u[i] = st->us[i] - k * st->gpx[i];
         P->v[i] = st->vs[i] - k * st->gpy[i];
+        if (tq) {
+            P->u[i] += kw[i] * st->qx[i];
+            P->v[i] += kw[i] * st->qy[i];
+        }
     }
     /* r^{n+1} = r^n + dt u^{n+1} (Eq. 7) */
     move_particles(S, P->u, P->v, dt, &stats->walled);
@@ -2246,6 +2445,9 @@ static void step10_correct(sol *S, double dt, sol_stats *stats)
         if (bal)
             st->p[c] += st->pib[c]; /* pi = pi_b + pi_d */
     }
+    if (tq)
+        UMP_CALL(bound_cell_velocity(S, err));
+    return UMP_OK;
 }
 
 /* ---- Step 11: removal, mesh temperature, management ---------------------------- */
@@ -2546,7 +2748,10 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     if (su->set.p_theta > 0)
         path_pressure_kick(S, stats);
     stage_mark(&clk, stats, SOL_STAGE_BOUNDARY);
-    int split = st->want_p && st->have_flux;
+    /* q: for the pressure written, and with walls_zero_gradient for the
+     * correction (transpose_q) at every step */
+    int split = (st->want_p || walls_zero_gradient(su)) && st->have_flux;
+    st->split = split;
     if (split) {
         interpolation_error(S);
         UMP_CALL(work_collect(S, stats, err));
@@ -2575,7 +2780,7 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     stats->p_res = S->su.pe->res;
     stats->p_solver = lsolve_name(S->su.pe->fac);
     stage_mark(&clk, stats, SOL_STAGE_PPE);
-    step10_correct(S, dt, stats);
+    UMP_CALL(step10_correct(S, dt, stats, err));
     if (st->want_p) {
         ump_idx nc = su->m->ncells;
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
