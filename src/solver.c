@@ -361,7 +361,7 @@ static void stage_mark(stage_clock *c, sol_stats *st, int stage)
 }
 
 static const char *const STAGE_NAMES[SOL_NSTAGES] = {
-    "boundary particles", "pressure written: MLS u^n faces", "predictor rows (Step 6)", "predictor solve (Step 6)",
+    "boundary particles", "interpolation error: MLS u^n faces", "predictor rows (Step 6)", "predictor solve (Step 6)",
     "move r* (Step 7)", "MLS u* faces/centroids (Step 8)", "PPE (Step 9)",
     "correct and move (Step 10)", "management (Step 11)", "continuity, Courant"};
 
@@ -2215,8 +2215,8 @@ static ump_status step9_pressure(sol *S, double dt, ump_err *err)
 /* ---- Step 10: correction ----------------------------------------------------- */
 
 /* anisotropicCells: the interpolation error's pressure q by the transpose
- * of the fits (docs/METHOD.md section 8, "The interpolation error's
- * pressure on stretched cells"). Step 9's p = p_d + q, q the potential of
+ * of the fits (docs/METHOD.md section 8, "Walls in the correction" (f)).
+ * Step 9's p = p_d + q, q the potential of
  * D eps / dt (interpolation_error). Eq. 10 gives every particle the whole
  * -dt grad q at its position, yet a particle that hardly enters its cells'
  * face fits of Step 8 hardly changes the fluxes that q corrects, so the
@@ -2330,8 +2330,8 @@ static ump_status transpose_q(sol *S, double dt, ump_err *err)
 
 /* anisotropicCells: the mesh velocity u_P of Eq. 36 within the range of
  * the corrected velocities of its stencil's samples (fluid particles and
- * boundary particles), per component (docs/METHOD.md section 8, "The
- * interpolation error's pressure on stretched cells"). In an empty thin
+ * boundary particles), per component (docs/METHOD.md section 8, "Walls in
+ * the correction" (f)). In an empty thin
  * cell at the lid both terms of u*_P - dt grad p_P are large and cancel
  * imperfectly; with transpose_q the particles no longer carry grad q whole
  * and that cell read 1.14 x the lid speed while every particle stayed
