@@ -1988,6 +1988,18 @@ static inline int velocity_prescribed(const sol_setup *su, ump_idx f)
     return k == BU_FIXED || k == BU_SYMMETRY;
 }
 
+/* The extents of face fa's fit from cell c (Step 8): the cell's, averaged
+ * with the neighbour's across an interior face. */
+static void face_extents(const mesh2d *m, ump_idx c, ump_idx fa, double *mdx, double *mdy)
+{
+    *mdx = m->dx[c];
+    *mdy = m->dy[c];
+    if (fa < m->ninternal) {
+        *mdx = 0.5 * (*mdx + m->dx[m->neigh[fa]]);
+        *mdy = 0.5 * (*mdy + m->dy[m->neigh[fa]]);
+    }
+}
+
 /* MLS (Eq. 32) of the particle velocities (fu, fv) and the boundary
  * particles' at the face centres, as fluxes u_f . A_f into flux[] (faces
  * whose velocity is prescribed excepted: the caller sets those), and, when
@@ -2035,11 +2047,8 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux
                 ump_idx fa = su->of_face[a];
                 if (fa >= ni && velocity_prescribed(su, fa))
                     continue;
-                double mdx = m->dx[c], mdy = m->dy[c];
-                if (fa < ni) {
-                    mdx = 0.5 * (mdx + m->dx[m->neigh[fa]]);
-                    mdy = 0.5 * (mdy + m->dy[m->neigh[fa]]);
-                }
+                double mdx, mdy;
+                face_extents(m, c, fa, &mdx, &mdy);
                 mls_fit_values(w, cnt, m->fx[fa], m->fy[fa], mls_extent(su, mdx), mls_extent(su, mdy),
                                fa >= ni ? fa - ni : -1, 2, w->fit_margin, uv);
                 flux[fa] = (uv[0] * m->nx[fa] + uv[1] * m->ny[fa]) * m->len[fa]; /* u_f . A_f, Eq. 20 */
@@ -2287,11 +2296,8 @@ static ump_status transpose_q(sol *S, double dt, ump_err *err)
                 ump_idx fa = su->of_face[a];
                 if (fa >= ni && velocity_prescribed(su, fa))
                     continue;
-                double mdx = m->dx[c], mdy = m->dy[c];
-                if (fa < ni) {
-                    mdx = 0.5 * (mdx + m->dx[m->neigh[fa]]);
-                    mdy = 0.5 * (mdy + m->dy[m->neigh[fa]]);
-                }
+                double mdx, mdy;
+                face_extents(m, c, fa, &mdx, &mdy);
                 int nn = offsets(w, cnt, m->fx[fa], m->fy[fa], fa >= ni ? fa - ni : -1);
                 mls_weights(w->h, w->k, nn, mls_extent(su, mdx), mls_extent(su, mdy), w->c0, NULL, NULL, NULL);
                 for (int j = 0; j < nn; j++)
@@ -2328,15 +2334,15 @@ static ump_status transpose_q(sol *S, double dt, ump_err *err)
     return UMP_OK;
 }
 
-/* anisotropicCells: the mesh velocity u_P of Eq. 36 within the range of
- * the corrected velocities of its stencil's samples (fluid particles and
- * boundary particles), per component (docs/METHOD.md section 8, "Walls in
- * the correction" (f)). In an empty thin
- * cell at the lid both terms of u*_P - dt grad p_P are large and cancel
- * imperfectly; with transpose_q the particles no longer carry grad q whole
- * and that cell read 1.14 x the lid speed while every particle stayed
- * below it (48^2 cavity graded (1000 1 1)). */
-static ump_status bound_cell_velocity(sol *S, ump_err *err)
+/* anisotropicCells with boundedFits: the mesh velocity u_P of Eq. 36
+ * within the range of the corrected velocities of its stencil's samples
+ * (fluid particles and boundary particles), per component, counted as a
+ * bounded value (docs/METHOD.md section 8, "Walls in the correction" (f)).
+ * In an empty thin cell at the lid both terms of u*_P - dt grad p_P are
+ * large and cancel imperfectly; with transpose_q the particles no longer
+ * carry grad q whole and that cell read 1.14 x the lid speed while every
+ * particle stayed below it (48^2 cavity graded (1000 1 1)). */
+static ump_status bound_cell_velocity(sol *S, sol_stats *stats, ump_err *err)
 {
     const sol_setup *su = &S->su;
     sol_state *st = &S->st;
@@ -2346,6 +2352,7 @@ static ump_status bound_cell_velocity(sol *S, ump_err *err)
 #pragma omp parallel num_threads(S->nthreads)
     {
         sol_work *w = &S->work[thread_id()];
+        double margin = w->fit_margin < 0 ? w->fit_margin : 0.0; /* boundedFits no: off */
 #pragma omp for schedule(dynamic, 64)
         for (ump_idx c = 0; c < nc; c++) {
             if (w->rc != UMP_OK)
@@ -2357,22 +2364,12 @@ static ump_status bound_cell_velocity(sol *S, ump_err *err)
                 work_fail(w, rc, &e);
                 continue;
             }
-            if (!cnt)
-                continue;
             gather_values(w, cnt, 2, f, g);
-            for (int q = 0; q < 2; q++) {
-                const double *v = w->gv[q];
-                double lo = v[0], hi = v[0];
-                for (size_t j = 1; j < cnt; j++) {
-                    lo = v[j] < lo ? v[j] : lo;
-                    hi = v[j] > hi ? v[j] : hi;
-                }
-                double u = out[q][c];
-                out[q][c] = u < lo ? lo : u > hi ? hi : u;
-            }
+            for (int q = 0; q < 2; q++)
+                out[q][c] = bound_fit(w, w->gv[q], cnt, out[q][c], margin);
         }
     }
-    return work_collect(S, NULL, err);
+    return work_collect(S, stats, err);
 }
 
 static ump_status step10_correct(sol *S, double dt, sol_stats *stats, ump_err *err)
@@ -2446,7 +2443,7 @@ static ump_status step10_correct(sol *S, double dt, sol_stats *stats, ump_err *e
             st->p[c] += st->pib[c]; /* pi = pi_b + pi_d */
     }
     if (tq)
-        UMP_CALL(bound_cell_velocity(S, err));
+        UMP_CALL(bound_cell_velocity(S, stats, err));
     return UMP_OK;
 }
 
