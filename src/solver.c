@@ -252,8 +252,8 @@ typedef struct sol_state {
        coefficient) */
     double *pd, *gq;
     size_t *tq_off;
-    ump_idx *tq_len, *tq_ref, *tq_face;
-    double *tq_c;
+    ump_idx *tq_len;
+    struct tq_entry { ump_idx ref, face; double c; } *tq;
     size_t tq_cap;
     int have_flux;             /* flux holds a corrected (divergence-free) phi^n */
     /* per particle */
@@ -406,8 +406,7 @@ void sol_free(sol **pS)
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
                    st->av, st->cnt_cell, st->pib, st->fluxb, st->pf0, st->gpx, st->gpy, st->wdamp, st->empty,
-                   st->qa, st->qb, st->qc, st->qx, st->qy, st->pd, st->gq, st->tq_off, st->tq_len, st->tq_ref,
-                   st->tq_face, st->tq_c,
+                   st->qa, st->qb, st->qc, st->qx, st->qy, st->pd, st->gq, st->tq_off, st->tq_len, st->tq,
                    st->fu, st->fv, st->fT, st->pout, st->fluxe, st->q, st->fz, st->pfprev, st->pfphi,
                    su->pd_off, su->pd_face, st->bpu0, st->bpv0, su->wall, su->wf_off, su->wf_face};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
@@ -1528,6 +1527,16 @@ static void sort_row(ump_idx *ci, double *av, ump_idx n)
  * Count -> prefix sum -> fill: row i has one entry per fluid particle of
  * its cell's stencil (itself: the diagonal), boundary particles go to the
  * right-hand side. */
+/* The fluid particles in cell c's stencil (its runs of consecutive cells
+ * in the bins). */
+static ump_idx stencil_particles(const sol_setup *su, const part_bins *bins, ump_idx c)
+{
+    ump_idx cnt = 0;
+    for (ump_idx r = su->ru_off[c]; r < su->ru_off[c + 1]; r++)
+        cnt += bins->off[su->ru_q1[r]] - bins->off[su->ru_q0[r]];
+    return cnt;
+}
+
 static ump_status step6_rows(sol *S, double dt, ump_err *err)
 {
     const sol_setup *su = &S->su;
@@ -1539,12 +1548,8 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
     size_t n = P->n;
     /* count */
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
-    for (ump_idx c = 0; c < nc; c++) {
-        ump_idx cnt = 0;
-        for (ump_idx r = su->ru_off[c]; r < su->ru_off[c + 1]; r++)
-            cnt += st->bins.off[su->ru_q1[r]] - st->bins.off[su->ru_q0[r]];
-        st->cnt_cell[c] = cnt;
-    }
+    for (ump_idx c = 0; c < nc; c++)
+        st->cnt_cell[c] = stencil_particles(su, &st->bins, c);
     /* prefix sum */
     st->rp[0] = 0;
     for (size_t i = 0; i < n; i++) {
@@ -2248,31 +2253,19 @@ static ump_status transpose_q(sol *S, double dt, ump_err *err)
     const mesh2d *m = su->m;
     ump_idx nc = m->ncells, ni = m->ninternal;
     size_t n = st->P->n;
-    const ump_idx *boff = st->bins.off;
     ppe_face_gradient_flux(su->pe, st->q, st->fz, st->gq);
     /* slots: a cell's fluid samples times the faces it fits */
     st->tq_off[0] = 0;
-    for (ump_idx c = 0; c < nc; c++) {
-        size_t cnt = 0;
-        for (ump_idx r = su->ru_off[c]; r < su->ru_off[c + 1]; r++)
-            cnt += (size_t)(boff[su->ru_q1[r]] - boff[su->ru_q0[r]]);
-        st->tq_off[c + 1] = st->tq_off[c] + cnt * (size_t)(su->of_off[c + 1] - su->of_off[c]);
-    }
+    for (ump_idx c = 0; c < nc; c++)
+        st->tq_off[c + 1] = st->tq_off[c] + (size_t)stencil_particles(su, &st->bins, c) *
+                                                (size_t)(su->of_off[c + 1] - su->of_off[c]);
     size_t need = st->tq_off[nc];
-    if (need > st->tq_cap || !st->tq_c) {
+    if (need > st->tq_cap || !st->tq) {
         size_t cap = need + need / 2 + 1024;
-        ump_idx *r = ump_realloc_array(st->tq_ref, cap, sizeof *r);
-        if (!r)
+        struct tq_entry *q = ump_realloc_array(st->tq, cap, sizeof *q);
+        if (!q)
             return UMP_FAIL(err, UMP_ERR_NOMEM, "correction: out of memory (%zu fit entries)", cap);
-        st->tq_ref = r;
-        ump_idx *f = ump_realloc_array(st->tq_face, cap, sizeof *f);
-        if (!f)
-            return UMP_FAIL(err, UMP_ERR_NOMEM, "correction: out of memory (%zu fit entries)", cap);
-        st->tq_face = f;
-        double *cc = ump_realloc_array(st->tq_c, cap, sizeof *cc);
-        if (!cc)
-            return UMP_FAIL(err, UMP_ERR_NOMEM, "correction: out of memory (%zu fit entries)", cap);
-        st->tq_c = cc;
+        st->tq = q;
         st->tq_cap = cap;
     }
 #pragma omp parallel num_threads(S->nthreads)
@@ -2301,11 +2294,8 @@ static ump_status transpose_q(sol *S, double dt, ump_err *err)
                 int nn = offsets(w, cnt, m->fx[fa], m->fy[fa], fa >= ni ? fa - ni : -1);
                 mls_weights(w->h, w->k, nn, mls_extent(su, mdx), mls_extent(su, mdy), w->c0, NULL, NULL, NULL);
                 for (int j = 0; j < nn; j++)
-                    if (w->sref[j] >= 0) { /* fluid particles only */
-                        st->tq_ref[pos] = w->sref[j];
-                        st->tq_face[pos] = fa;
-                        st->tq_c[pos++] = w->c0[j];
-                    }
+                    if (w->sref[j] >= 0) /* fluid particles only */
+                        st->tq[pos++] = (struct tq_entry){w->sref[j], fa, w->c0[j]};
             }
             st->tq_len[c] = (ump_idx)(pos - st->tq_off[c]);
         }
@@ -2315,8 +2305,8 @@ static ump_status transpose_q(sol *S, double dt, ump_err *err)
         st->qa[i] = st->qb[i] = st->qc[i] = st->qx[i] = st->qy[i] = 0;
     for (ump_idx c = 0; c < nc; c++) /* in cell order: the same sums with any thread count */
         for (size_t e = st->tq_off[c]; e < st->tq_off[c] + (size_t)st->tq_len[c]; e++) {
-            ump_idx j = st->tq_ref[e], f = st->tq_face[e];
-            double cj = st->tq_c[e], ac = fabs(cj), nx = m->nx[f], ny = m->ny[f];
+            ump_idx j = st->tq[e].ref, f = st->tq[e].face;
+            double cj = st->tq[e].c, ac = fabs(cj), nx = m->nx[f], ny = m->ny[f];
             double g = dt * st->gq[f] / m->len[f]; /* dt dq/dn at the face */
             st->qa[j] += ac * nx * nx;
             st->qb[j] += ac * nx * ny;
