@@ -143,3 +143,23 @@ void lsq_gradient(const lsq_grad *g, const double *restrict phi, double *restric
         gy[c] = sy;
     }
 }
+
+void lsq_gradient_curved(const lsq_grad *g, const double *restrict phi, const double *restrict hxx,
+                         const double *restrict hxy, const double *restrict hyy, double *restrict gx,
+                         double *restrict gy)
+{
+    const mesh2d *m = g->m;
+    for (ump_idx c = 0; c < m->ncells; c++) {
+        double sx = 0, sy = 0, pc = phi[c];
+        for (ump_idx k = m->n1_off[c]; k < m->n1_off[c + 1]; k++) {
+            double dx = m->cx[m->n1[k]] + (m->n1_sx ? m->n1_sx[k] : 0.0) - m->cx[c];
+            double dy = m->cy[m->n1[k]] + (m->n1_sy ? m->n1_sy[k] : 0.0) - m->cy[c];
+            /* phi_j - phi_P less the given curvature's part */
+            double d = phi[m->n1[k]] - pc - 0.5 * (hxx[c] * dx * dx + 2 * hxy[c] * dx * dy + hyy[c] * dy * dy);
+            sx += g->wx[k] * d;
+            sy += g->wy[k] * d;
+        }
+        gx[c] = sx;
+        gy[c] = sy;
+    }
+}

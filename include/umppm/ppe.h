@@ -89,4 +89,12 @@ ump_status ppe_solve(ppe *P, const double *flux, double dt, const double *pf, do
  * correction u_f = u*_f - dt grad p_f makes sum_f u_f . A_f = 0 per cell. */
 void ppe_face_gradient_flux(const ppe *P, const double *p, const double *pf, double *gflux);
 
+/* Eq. 25 of interior face f applied to the quadratic
+ *   q(x) = a . (x - x_f) + 1/2 (x - x_f)^T H (x - x_f),  H = {Hxx, Hxy, Hyy},
+ * evaluated at the centroids of the face's row (with cyclic shifts): the
+ * flux grad q_f . A_f that ppe_face_gradient_flux would give for the cell
+ * field q, so fluxes made of it are solved exactly by a global quadratic
+ * with that gradient and Hessian (the balanced buoyancy, docs/METHOD.md
+ * section 8). 0 on boundary faces. */
+double ppe_face_quadratic_flux(const ppe *P, ump_idx f, const double a[2], const double H[3]);
 #endif
