@@ -241,6 +241,102 @@ static inline __attribute__((always_inline)) ump_status cpm_coeffs2(const double
     return UMP_OK;
 }
 
+/* ---- Zero normal gradients in the fit -------------------------------------
+ * A zero-gradient boundary (an adiabatic wall for T) has no value of its
+ * own: the solver gave its boundary particle T_P + grad T_P . d_t from the
+ * previous step, a Dirichlet value in the implicit row. Next to such a
+ * wall on a thin cell that value carries almost the whole row (dt kappa
+ * a_b ~ 10^3 on cells 1000:1), so the particle was held at the lagged
+ * value and the diffusion along the wall all but stopped (README,
+ * "Zero-gradient walls in the Laplacian"). Here such a sample is a
+ * derivative row of the fit instead, d phi/dn (x_b) = 0 in the same Taylor
+ * basis: q_b = nu_X [1, 0, X, Y, 0] + nu_Y [0, 1, 0, X, Y], nu the normal
+ * in the hat metric (unit), weighted w_b^2 r_b^2 = 1/r_b^4 (a derivative
+ * row times a length, so that it weighs like a value row). It enters M
+ * (Eq. 17) and not the right-hand side, so its coefficient is 0 and the
+ * row is implicit in the particles alone: exact for quadratics whose
+ * normal derivative vanishes at the Neumann samples. */
+static void neumann_q(double X, double Y, double nX, double nY, double *q)
+{
+    q[0] = nX;
+    q[1] = nY;
+    q[2] = nX * X;
+    q[3] = nX * Y + nY * X;
+    q[4] = nY * Y;
+}
+
+/* the normal (nx, ny) in the hat metric of (sx, sy), unit; 0 if none */
+static int hat_normal(double nx, double ny, double sx, double sy, double *nX, double *nY)
+{
+    /* d/dn = nx d/dx + ny d/dy = (nx sx) d/dX + (ny sy) d/dY (times 1/L) */
+    double a = nx * sx, b = ny * sy, r = hypot(a, b);
+    if (!(r > 0))
+        return 0;
+    *nX = a / r;
+    *nY = b / r;
+    return 1;
+}
+
+ump_status lap_cpm_neumann(const double *h, const double *k, const double *nx, const double *ny, int n,
+                           double sx, double sy, double *a, ump_err *err)
+{
+    UMP_CHECK(sx > 0 && sy > 0 && isfinite(sx) && isfinite(sy), err, UMP_ERR_INPUT,
+              "Laplacian: metric (%g, %g), expected finite and > 0", sx, sy);
+    double r2max = 0;
+    for (int j = 0; j < n; j++) {
+        double X = sx * h[j], Y = sy * k[j];
+        r2max = fmax(r2max, X * X + Y * Y);
+    }
+    if (!(r2max > 0) || !isfinite(r2max))
+        return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                        "CPM Laplacian: %d neighbours, none at a finite non-zero distance", n);
+    double iL = 1 / sqrt(r2max), rmin2 = CPM_COINCIDENT * CPM_COINCIDENT;
+    double m[SPD_MAX][SPD_MAX] = {{0}};
+    int nval = 0, nneu = 0;
+    for (int j = 0; j < n; j++) {
+        double X = sx * h[j] * iL, Y = sy * k[j] * iL, r2 = X * X + Y * Y, p[5], nX, nY, w2;
+        if (r2 < rmin2)
+            continue;
+        if (nx && hat_normal(nx[j], ny[j], sx, sy, &nX, &nY)) {
+            neumann_q(X, Y, nX, nY, p);
+            w2 = 1 / (r2 * r2); /* w^2 r^2 */
+            nneu++;
+        } else {
+            p[0] = X, p[1] = Y, p[2] = 0.5 * X * X, p[3] = X * Y, p[4] = 0.5 * Y * Y;
+            w2 = 1 / (r2 * r2 * r2); /* w_j^2 = 1/r^6 */
+            nval++;
+        }
+        for (int r = 0; r < 5; r++)
+            for (int c = r; c < 5; c++)
+                m[r][c] += w2 * p[r] * p[c];
+    }
+    if (nval + nneu < 5 || nval < 1)
+        return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                        "CPM Laplacian: %d neighbours and %d zero-gradient samples, at least 5 needed "
+                        "in 2-D", nval, nneu);
+    spd_small f;
+    double rc = spd_factor_invert_fixed(&f, 5, m);
+    if (rc < LAP_RCOND_MIN)
+        return UMP_FAIL(err, UMP_ERR_SINGULAR,
+                        "CPM Laplacian: moment matrix singular (rcond %.3g, %d neighbours and %d "
+                        "zero-gradient samples not spread in 2-D)", rc, nval, nneu);
+    double q[5], c2[5], c4[5]; /* M^{-1} (sx^2 e_2 + sy^2 e_4), Eq. 16 */
+    spd_inv_column(&f, 2, c2);
+    spd_inv_column(&f, 4, c4);
+    for (int r = 0; r < 5; r++)
+        q[r] = sx * sx * c2[r] + sy * sy * c4[r];
+    for (int j = 0; j < n; j++) {
+        double X = sx * h[j] * iL, Y = sy * k[j] * iL, r2 = X * X + Y * Y, nX, nY;
+        if (r2 < rmin2 || (nx && hat_normal(nx[j], ny[j], sx, sy, &nX, &nY))) {
+            a[j] = 0; /* d phi/dn = 0 there: nothing on the right-hand side */
+            continue;
+        }
+        double s = q[0] * X + q[1] * Y + q[2] * 0.5 * X * X + q[3] * X * Y + q[4] * 0.5 * Y * Y;
+        a[j] = s / (r2 * r2 * r2) / r2max; /* a_j = w_j^2 p_j . q / L^2 */
+    }
+    return UMP_OK;
+}
+
 /* ---- Positive rows -------------------------------------------------------
  * A CPM row (Eqs. 16-17) is exact for quadratics, but its coefficients a_j
  * may be negative, and then the implicit predictor (Eq. 14) is not an
@@ -308,7 +404,8 @@ static int pos_solve(int n, const double (*p)[5], const double *d, const unsigne
     return 0;
 }
 
-int lap_positive_row(const double *h, const double *k, int n, double sx, double sy, double tau, double *a)
+static int positive_row(const double *h, const double *k, const double *nx, const double *ny, int n, double sx,
+                        double sy, double tau, double *a)
 {
     if (n <= 0 || n > LAP_POS_MAX)
         return 0;
@@ -322,7 +419,7 @@ int lap_positive_row(const double *h, const double *k, int n, double sx, double 
     if (!(sn > tau * sp))
         return 0;
     double p[LAP_POS_MAX][5], d[LAP_POS_MAX], z[LAP_POS_MAX], x[LAP_POS_MAX], g[LAP_POS_MAX];
-    unsigned char pas[LAP_POS_MAX];
+    unsigned char pas[LAP_POS_MAX], fre[LAP_POS_MAX];
     double r2max = 0;
     for (int j = 0; j < n; j++) {
         double X = sx * h[j], Y = sy * k[j];
@@ -334,12 +431,30 @@ int lap_positive_row(const double *h, const double *k, int n, double sx, double 
     /* targets in hat units: lap = sx^2 phi_XX + sy^2 phi_YY in the metric,
      * scaled by s2 so that the larger is 1 */
     double s2 = fmax(sx * sx, sy * sy), b[5] = {0, 0, sx * sx / s2, 0, sy * sy / s2};
+    int nfree = 0;
     for (int j = 0; j < n; j++) {
-        double X = sx * h[j] * iL, Y = sy * k[j] * iL, r2 = X * X + Y * Y;
+        double X = sx * h[j] * iL, Y = sy * k[j] * iL, r2 = X * X + Y * Y, nX, nY;
         p[j][0] = X, p[j][1] = Y, p[j][2] = 0.5 * X * X, p[j][3] = X * Y, p[j][4] = 0.5 * Y * Y;
         d[j] = LAP_POS_LAM * LAP_POS_LAM * (r2 > 0 ? r2 * r2 * r2 : 1e300);
         x[j] = 0;
         pas[j] = 0;
+        fre[j] = 0;
+        if (nx && r2 > 0 && hat_normal(nx[j], ny[j], sx, sy, &nX, &nY)) {
+            /* a zero-gradient sample (lap_cpm_neumann): its multiplier
+             * of q_b r_b has either sign and multiplies a zero */
+            double r = sqrt(r2);
+            neumann_q(X, Y, nX, nY, p[j]);
+            for (int c = 0; c < 5; c++)
+                p[j][c] *= r;
+            pas[j] = fre[j] = 1;
+            nfree++;
+        }
+    }
+    if (nfree > 0) { /* start from the best fit by the free multipliers alone */
+        if (pos_solve(n, (const double (*)[5])p, d, pas, b, z))
+            return 0;
+        for (int j = 0; j < n; j++)
+            x[j] = fre[j] ? z[j] : 0;
     }
     /* Lawson-Hanson */
     for (int it = 0; it < 3 * n; it++) {
@@ -366,7 +481,7 @@ int lap_positive_row(const double *h, const double *k, int n, double sx, double 
             double alpha = 1;
             int jb = -1; /* the passive coefficient that reaches 0 first */
             for (int j = 0; j < n; j++)
-                if (pas[j] && z[j] <= 0) {
+                if (pas[j] && !fre[j] && z[j] <= 0) {
                     double t = x[j] - z[j] > 0 ? x[j] / (x[j] - z[j]) : 0;
                     if (t < alpha || jb < 0)
                         alpha = t, jb = j;
@@ -378,7 +493,7 @@ int lap_positive_row(const double *h, const double *k, int n, double sx, double 
             }
             for (int j = 0; j < n; j++) {
                 x[j] += alpha * (z[j] - x[j]);
-                if (pas[j] && (j == jb || x[j] <= 0))
+                if (pas[j] && !fre[j] && (j == jb || x[j] <= 0))
                     pas[j] = 0, x[j] = 0;
             }
         }
@@ -389,8 +504,19 @@ int lap_positive_row(const double *h, const double *k, int n, double sx, double 
      * made the graded cavities' answer depend on rounding at O(0.2)) */
     double wb = tau > 0 ? fmin(1, (sn / sp - tau) / tau) : 1;
     for (int j = 0; j < n; j++)
-        a[j] = (1 - wb) * a[j] + wb * s2 * x[j] * (iL * iL);
+        a[j] = fre[j] ? 0 : (1 - wb) * a[j] + wb * s2 * x[j] * (iL * iL);
     return 1;
+}
+
+int lap_positive_row(const double *h, const double *k, int n, double sx, double sy, double tau, double *a)
+{
+    return positive_row(h, k, NULL, NULL, n, sx, sy, tau, a);
+}
+
+int lap_positive_row_neumann(const double *h, const double *k, const double *nx, const double *ny, int n,
+                             double sx, double sy, double tau, double *a)
+{
+    return positive_row(h, k, nx, ny, n, sx, sy, tau, a);
 }
 
 /* CPM4: the CPM fit of Eqs. 16-17 over the fourth-order Taylor basis in

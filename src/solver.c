@@ -272,6 +272,12 @@ typedef struct sol_state {
     /* predictor system I + dt nu L in rows */
     ump_idx *rp, *ci;
     double *av;
+    double *avT;               /* [rowcap] rows of Eq. 37 when they differ from
+                                  the predictor's (zero-gradient T faces), or NULL */
+    unsigned char *tneu;       /* [nb] buoyant: T's boundary particle is a zero
+                                  gradient this step (set_boundary_particles) */
+    ump_idx ntneu;             /* how many */
+    int sepT;                  /* this step's rows for T are st->avT */
     size_t rowcap;
     ump_idx *cnt_cell;         /* [ncells] fluid particles in each cell's stencil */
     ump_idx *empty;            /* [ncells] the cells without a particle (refill_carried) */
@@ -407,7 +413,7 @@ void sol_free(sol **pS)
                    su->ru_sx, su->ru_sy, su->st_bnd, su->of_off, su->of_face, st->p, st->pold, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
-                   st->av, st->cnt_cell, st->pib, st->hxx, st->hxy, st->hyy, st->fluxb, st->pf0, st->gpx, st->gpy, st->wdamp, st->empty,
+                   st->av, st->avT, st->tneu, st->cnt_cell, st->pib, st->hxx, st->hxy, st->hyy, st->fluxb, st->pf0, st->gpx, st->gpy, st->wdamp, st->empty,
                    st->qa, st->qb, st->qc, st->qx, st->qy, st->pd, st->gq, st->tq_off, st->tq_len, st->tq,
                    st->fu, st->fv, st->fT, st->pout, st->fluxe, st->q, st->fz, st->pfprev, st->pfphi,
                    su->pd_off, su->pd_face, st->bpu0, st->bpv0, su->wall, su->wf_off, su->wf_face};
@@ -665,11 +671,17 @@ static void set_boundary_particles(const sol_setup *su, sol_state *st)
     if (!su->set.buoyant)
         return;
     lsq_gradient(su->g, st->Tc, st->gtx, st->gty);
+    st->ntneu = 0;
     for (ump_idx b = 0; b < bp->n; b++) {
         ump_idx f = bp->face[b];
         double T = su->tb[b];
-        if (su->t_kind[b] == BT_ZEROGRADIENT || (su->t_kind[b] == BT_INLETOUTLET && st->flux[f] >= 0))
+        st->tneu[b] = 0;
+        if (su->t_kind[b] == BT_ZEROGRADIENT || (su->t_kind[b] == BT_INLETOUTLET && st->flux[f] >= 0)) {
             T = zero_gradient_T(su, st, f);
+            /* the rows of Eq. 37 take it as d T/dn = 0 (step6_rows) */
+            st->tneu[b] = su->set.lap.model == LAP_CPM || su->set.lap.model == LAP_CPM4;
+            st->ntneu += st->tneu[b];
+        }
         bp->T[b] = T;
         /* fixed p_rgh: pi = p_rgh - beta (T_f - TRef) gh_f (the buoyant p_rgh
          * relation of solver.h) */
@@ -1184,7 +1196,7 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
             !(st->prgh_f = ump_alloc_array((size_t)nf, sizeof(double))) ||
             !(st->fluxb = ump_alloc_array((size_t)nf, sizeof(double))) ||
             !(st->pf0 = ump_alloc_array((size_t)nf, sizeof(double))) ||
-            !(su->t_kind = ump_alloc_array((size_t)nb, 1)) ||
+            !(su->t_kind = ump_alloc_array((size_t)nb, 1)) || !(st->tneu = ump_alloc_array((size_t)nb, 1)) ||
             !(su->tb = ump_alloc_array((size_t)nb, sizeof(double))))
             goto nomem;
         /* gh = g . x - ghRef with the 3-D cell and face centres (gh.H) */
@@ -1469,15 +1481,30 @@ static double dominance_weight(const double *a, int n, double dnu)
 /* The row w->c0 [nn] (offsets w->h, w->k) blended by t in (0, 1] toward
  * lap_positive_row's positive row with share tau (t = 1: replaced);
  * w->cx keeps the row before. Returns 1 if the row was changed. */
-static int positive_blend(sol_work *w, int nn, double sx, double sy, double tau, double t)
+static int positive_blend(sol_work *w, double *row, const double *nx, const double *ny, int nn, double sx,
+                          double sy, double tau, double t)
 {
     if (t < 1)
-        memcpy(w->cx, w->c0, (size_t)nn * sizeof *w->c0);
-    int r = lap_positive_row(w->h, w->k, nn, sx, sy, tau, w->c0);
+        memcpy(w->cx, row, (size_t)nn * sizeof *row);
+    int r = nx ? lap_positive_row_neumann(w->h, w->k, nx, ny, nn, sx, sy, tau, row)
+               : lap_positive_row(w->h, w->k, nn, sx, sy, tau, row);
     if (r && t < 1)
         for (int j = 0; j < nn; j++)
-            w->c0[j] = w->cx[j] + t * (w->c0[j] - w->cx[j]);
+            row[j] = w->cx[j] + t * (row[j] - w->cx[j]);
     return r;
+}
+
+/* positiveRows on a row (docs/METHOD.md section 8, "Positive rows"; the
+ * comment in step6_rows); returns 1 if it was changed */
+static int positive_row(const sol_settings *set, sol_work *w, double *row, const double *nx, const double *ny,
+                        int nn, double sx, double sy, double dmax)
+{
+    double th = set->anisotropic ? 1 : dominance_weight(row, nn, dmax);
+    int made = th > 0 ? positive_blend(w, row, nx, ny, nn, sx, sy, SOL_POSITIVE_TAU, th) : 0;
+    double td = set->anisotropic ? dominance_weight(row, nn, dmax) : 0;
+    if (td > 0) /* tau 0: the positive row */
+        made |= positive_blend(w, row, nx, ny, nn, sx, sy, 0, td);
+    return made;
 }
 
 /* boundedFits (docs/METHOD.md section 8, "Bounded fits"): v limited to the
@@ -1511,18 +1538,22 @@ static double bound_fit(sol_work *w, const double *s, size_t n, double v, double
 
 /* Insertion sort of one row by column (only when particles are not sorted
  * by cell: sortInterval 0 or > 1). */
-static void sort_row(ump_idx *ci, double *av, ump_idx n)
+static void sort_row(ump_idx *ci, double *av, double *avT, ump_idx n)
 {
     for (ump_idx a = 1; a < n; a++) {
         ump_idx c = ci[a];
-        double v = av[a];
+        double v = av[a], vT = avT ? avT[a] : 0;
         ump_idx b = a;
         for (; b > 0 && ci[b - 1] > c; b--) {
             ci[b] = ci[b - 1];
             av[b] = av[b - 1];
+            if (avT)
+                avT[b] = avT[b - 1];
         }
         ci[b] = c;
         av[b] = v;
+        if (avT)
+            avT[b] = vT;
     }
 }
 
@@ -1562,7 +1593,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
         st->rp[i + 1] = (ump_idx)e;
     }
     size_t nz = (size_t)st->rp[n];
-    if (nz > st->rowcap || !st->ci) {
+    if (nz > st->rowcap || !st->ci || (st->ntneu > 0 && !st->avT)) {
         size_t cap = nz + nz / 2 + 1024;
         ump_idx *ci = ump_realloc_array(st->ci, cap, sizeof *ci);
         if (!ci)
@@ -1572,6 +1603,12 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
         if (!av)
             return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor: out of memory (%zu entries)", cap);
         st->av = av;
+        if (st->ntneu > 0 || st->avT) {
+            double *aT = ump_realloc_array(st->avT, cap, sizeof *aT);
+            if (!aT)
+                return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor: out of memory (%zu entries)", cap);
+            st->avT = aT;
+        }
         st->rowcap = cap;
     }
     /* fill */
@@ -1583,6 +1620,8 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
     int bal = buoyant && set->balanced;
     int kick = bal || set->p_theta > 0; /* gpx, gpy: grad pi_b and/or th grad p^{n-1/2} */
     int damp = walls_zero_gradient(su);  /* st->wdamp, for step10_correct */
+    int sepT = buoyant && st->ntneu > 0; /* rows of their own for T (st->avT) */
+    st->sepT = sepT;
 #pragma omp parallel num_threads(S->nthreads)
     {
         sol_work *w = &S->work[thread_id()];
@@ -1634,19 +1673,41 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
              * 10^4, and a row 1 % negative turned u^n = 0.005 into u* =
              * 1.80 next to the lid's corner (README, "Graded toward the
              * lid's downstream corner") */
+            /* Zero-gradient walls in the Laplacian (docs/METHOD.md
+             * section 8): where T's boundary particles in the stencil are
+             * zero gradients (adiabatic walls), Eq. 37's row is fitted
+             * with d T/dn = 0 there instead of their lagged values
+             * (lap_cpm_neumann) into w->gv[0]; else it is this row */
+            double *aT = NULL;
+            if (sepT && lp->model == LAP_CPM) {
+                double *nxs = w->pv, *nys = w->cy;
+                int any = 0, jj = 0;
+                for (size_t j = 0; j < cnt; j++) {
+                    ump_idx r = w->ref[j];
+                    if (r == (ump_idx)i)
+                        continue;
+                    ump_idx f = r < 0 && st->tneu[-1 - r] ? bp->face[-1 - r] : -1;
+                    nxs[jj] = f >= 0 ? m->nx[f] : 0;
+                    nys[jj++] = f >= 0 ? m->ny[f] : 0;
+                    any |= f >= 0;
+                }
+                if (any && lap_cpm_neumann(w->h, w->k, nxs, nys, nn, sx, sy, w->gv[0], &e) == UMP_OK) {
+                    aT = w->gv[0];
+                    if (set->positive)
+                        w->positive_rows += positive_row(set, w, aT, nxs, nys, nn, sx, sy, dkap);
+                } else if (any) {
+                    w->lap_fallbacks++; /* the lagged values, as with another model */
+                }
+            }
             if (set->positive && lp->model == LAP_CPM) {
-                double dmax = dnu > dkap ? dnu : dkap;
-                double th = set->anisotropic ? 1 : dominance_weight(w->c0, nn, dmax);
-                int made = th > 0 ? positive_blend(w, nn, sx, sy, SOL_POSITIVE_TAU, th) : 0;
-                double td = set->anisotropic ? dominance_weight(w->c0, nn, dmax) : 0;
-                if (td > 0) /* tau 0: the positive row */
-                    made |= positive_blend(w, nn, sx, sy, 0, td);
-                w->positive_rows += made;
+                /* with a row of its own for T, this row is the velocity's */
+                double dmax = aT || dnu > dkap ? dnu : dkap;
+                w->positive_rows += positive_row(set, w, w->c0, NULL, NULL, nn, sx, sy, dmax);
             }
             /* L phi_i = sum_j a_j (phi_j - phi_i); boundary particles are
              * Dirichlet data (Eq. 14): their a_j phi_j moves to the RHS */
             ump_idx pos = st->rp[i], dpos = -1, *ci = st->ci;
-            double *av = st->av, suma = 0, bu = 0, bv = 0, bT = 0, swall = 0;
+            double *av = st->av, *avT = st->avT, suma = 0, bu = 0, bv = 0, bT = 0, swall = 0, sumT = 0;
             int jj = 0, sorted = 1;
             for (size_t j = 0; j < cnt; j++) {
                 ump_idx r = w->ref[j];
@@ -1655,8 +1716,10 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                     ci[dpos] = r;
                     continue;
                 }
-                double a = w->c0[jj++];
+                double a = w->c0[jj], at = aT ? aT[jj] : a;
+                jj++;
                 suma += a;
+                sumT += at;
                 if (r < 0) {
                     if (damp) {
                         ump_idx fb = bp->face[-1 - r] - m->ninternal;
@@ -1664,15 +1727,19 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                     }
                     bu += a * bp->u[-1 - r];
                     bv += a * bp->v[-1 - r];
-                    bT += a * bp->T[-1 - r];
+                    bT += at * bp->T[-1 - r];
                 } else {
                     ci[pos] = r;
                     av[pos] = -dnu * a;
+                    if (sepT)
+                        avT[pos] = -dkap * at;
                     sorted &= pos == st->rp[i] || ci[pos - 1] < r;
                     pos++;
                 }
             }
             av[dpos] = 1 + dnu * suma; /* I + dt nu L, Eq. 14 */
+            if (sepT)
+                avT[dpos] = 1 + dkap * sumT; /* I + dt kappa L, Eq. 37 */
             if (damp) {
                 /* Walls in the correction (e) (docs/METHOD.md section 8):
                  * what this row leaves of an increment given to the fluid
@@ -1687,7 +1754,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
             if (dpos + 1 < pos)
                 sorted &= ci[dpos + 1] > ci[dpos];
             if (!sorted)
-                sort_row(ci + st->rp[i], av + st->rp[i], pos - st->rp[i]);
+                sort_row(ci + st->rp[i], av + st->rp[i], sepT ? avT + st->rp[i] : NULL, pos - st->rp[i]);
             /* Boussinesq source per unit mass, -beta (T^n - TRef) g (Eq. 4) */
             double b = buoyant ? -set->beta * (P->T[i] - set->t_ref) : 0;
             /* balanced buoyancy: b - grad pi_b (balance_buoyancy) */
@@ -1715,13 +1782,19 @@ static ump_status step6_solve(sol *S, double dt, sol_stats *stats, ump_err *err)
     if (set->buoyant)
         memcpy(st->Ts, P->T, n * sizeof *st->Ts);
     double dnu = dt * set->nu, dkap = dt * set->kappa;
-    int together = set->buoyant && dkap == dnu;
+    int together = set->buoyant && dkap == dnu && !st->sepT;
     const double *b[3] = {st->rhs_u, st->rhs_v, st->rhs_T};
     double *x[3] = {st->us, st->vs, st->Ts};
     UMP_CALL(lsolve_rows_setup(st->kry, &A, set->pred_pc, err));
     UMP_CALL(lsolve_rows_bicgstab(st->kry, &A, together ? 3 : 2, b, x, set->pred_tol, set->pred_maxit,
                                   stats->pred, err));
-    if (set->buoyant && !together) {
+    if (set->buoyant && st->sepT) {
+        /* Eq. 37 on its own rows (zero-gradient T faces, step6_rows) */
+        lsolve_csr AT = {(ump_idx)n, st->rp, st->ci, st->avT};
+        UMP_CALL(lsolve_rows_setup(st->kry, &AT, set->pred_pc, err));
+        UMP_CALL(lsolve_rows_bicgstab(st->kry, &AT, 1, b + 2, x + 2, set->pred_tol, set->pred_maxit,
+                                      stats->pred + 2, err));
+    } else if (set->buoyant && !together) {
         /* Eq. 37: the same rows with dt kappa, I + (kappa/nu)(A - I) */
         double r = dkap / dnu;
         size_t nz = (size_t)st->rp[n];

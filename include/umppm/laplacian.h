@@ -87,6 +87,21 @@ ump_status lap_coeffs_metric(const lap_params *p, const double *h, const double 
  * allocation. */
 int lap_positive_row(const double *h, const double *k, int n, double sx, double sy, double tau, double *a);
 
+/* CPM (2-D, metric sx, sy as lap_coeffs_metric) with zero-gradient samples
+ * (docs/METHOD.md section 8, "Zero-gradient walls in the Laplacian"):
+ * sample j with (nx[j], ny[j]) != 0 is a point of a zero-gradient boundary
+ * with that unit normal; it enters the fit as the row d phi/dn = 0 and
+ * gets a_j = 0, so the row is implicit in the other samples only. nx, ny
+ * NULL: lap_coeffs_metric's CPM row (up to rounding). UMP_ERR_SINGULAR if
+ * the samples do not determine the five derivatives. */
+ump_status lap_cpm_neumann(const double *h, const double *k, const double *nx, const double *ny, int n,
+                           double sx, double sy, double *a, ump_err *err);
+
+/* lap_positive_row for a row of lap_cpm_neumann: the zero-gradient
+ * samples' multipliers are free in sign and their a_j stay 0. */
+int lap_positive_row_neumann(const double *h, const double *k, const double *nx, const double *ny, int n,
+                             double sx, double sy, double tau, double *a);
+
 /* The explicit value: sum_j a_j (phi_j - phi_i) over a row a [n] from
  * lap_coeffs_d / lap_coeffs, neighbour values phij [n]. */
 double lap_value(const double *a, const double *phij, double phii, int n);

@@ -256,6 +256,104 @@ static void test_positive_row(void **state)
     assert_true(fabs(lx - 2) < 0.02);
 }
 
+/* Zero-gradient samples (lap_cpm_neumann, lap_positive_row_neumann):
+ * (1) a particle in the first row above a wall y = 0, jittered lattice
+ * neighbours in three rows and five wall samples with d/dy = 0: the row is
+ * exact on the quadratics whose y-derivative vanishes on the wall (no y
+ * and xy terms), gives the wall samples 0, and its positive form is
+ * non-negative and within 1e-3 of them; without normals it is
+ * lap_coeffs_metric's row. (2) The wall particle of a cell 0.069 x 0.0011
+ * (the stratified box graded 200:1, whose adiabatic walls froze T: README,
+ * "Zero-gradient walls in the Laplacian"): x^2 and (y - y_wall)^2 exact,
+ * and the positive row keeps lap(x^2) to 1 %. */
+static void test_cpm_neumann(void **state)
+{
+    (void)state;
+    tu_rng_seed(47);
+    double hh[NMAX], kk[NMAX], nx[NMAX], ny[NMAX], a[NMAX], b[NMAX], phi[NMAX];
+    double worst = 0, worstp = 0;
+    ump_err err;
+    for (int t = 0; t < 200; t++) {
+        double h = pow(10, tu_rnd_in(-3, 1)), jit = 0.3;
+        double xi = jit * tu_rnd_in(-1, 1) * h, yi = (0.5 + 0.4 * jit * tu_rnd_in(-1, 1)) * h;
+        int n = 0;
+        for (int i = -2; i <= 2; i++)
+            for (int j = 0; j <= 2; j++) {
+                if (i == 0 && j == 0)
+                    continue;
+                hh[n] = (i + jit * tu_rnd_in(-1, 1)) * h - xi;
+                kk[n] = (j + 0.5 + 0.4 * jit * tu_rnd_in(-1, 1)) * h - yi;
+                nx[n] = ny[n] = 0;
+                n++;
+            }
+        for (int i = -2; i <= 2; i++) { /* the wall's samples */
+            hh[n] = i * h - xi;
+            kk[n] = -yi;
+            nx[n] = 0;
+            ny[n++] = t % 2 ? -1 : 1; /* either orientation */
+        }
+        double sx = (t % 3 ? 1 : tu_rnd_in(0.5, 2)) / h, sy = 1 / h;
+        assert_int_equal(lap_cpm_neumann(hh, kk, nx, ny, n, sx, sy, a, &err), UMP_OK);
+        for (int j = n - 5; j < n; j++)
+            assert_true(a[j] == 0);
+        quad f;
+        for (int i = 0; i < 6; i++)
+            f.q[i] = i == 2 || i == 3 ? 0 : tu_rnd_in(-1, 1) / (i == 0 ? 1 : i < 3 ? h : h * h);
+        double lap, exact, rel = quad_rel_error(a, n, &f, xi, yi, hh, kk, phi, &lap, &exact);
+        worst = fmax(worst, rel);
+        if (!(rel <= 1e-9))
+            fail_msg("trial %d: zero-gradient row %.17g, exact %.17g, rel %.3g", t, lap, exact, rel);
+        for (int j = 0; j < n; j++)
+            b[j] = a[j];
+        assert_int_equal(lap_positive_row_neumann(hh, kk, nx, ny, n, sx, sy, -1, b), 1);
+        for (int j = 0; j < n; j++)
+            assert_true(b[j] >= 0 && (j < n - 5 || b[j] == 0));
+        rel = quad_rel_error(b, n, &f, xi, yi, hh, kk, phi, &lap, &exact);
+        worstp = fmax(worstp, rel);
+        if (!(rel <= 1e-3))
+            fail_msg("trial %d: positive zero-gradient row %.17g, exact %.17g, rel %.3g", t, lap, exact, rel);
+        /* no normals: CPM's row */
+        assert_int_equal(lap_cpm_neumann(hh, kk, NULL, NULL, n, sx, sy, a, &err), UMP_OK);
+        assert_int_equal(lap_coeffs_metric(&CPM, hh, kk, n, h, sx, sy, b, &err), UMP_OK);
+        double amax = 0, dmax = 0;
+        for (int j = 0; j < n; j++) {
+            amax = fmax(amax, fabs(b[j]));
+            dmax = fmax(dmax, fabs(a[j] - b[j]));
+        }
+        assert_true(dmax <= 1e-9 * amax);
+    }
+    /* (2) the thin wall cell: 4 columns x 3 rows of particles, the wall's
+     * samples 5.58e-4 below (offsets of the particle at the centroid) */
+    static const double xs[5] = {-2.6974e-01, -9.6280e-02, 0, 5.3440e-02, 8.3101e-02};
+    static const double ys[3] = {0, 1.5626e-03, 4.3778e-03};
+    double yw = -5.5774e-04;
+    int n = 0;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 5; c++)
+            if (r || c != 2)
+                hh[n] = xs[c], kk[n] = ys[r], nx[n] = ny[n] = 0, n++;
+    for (int c = 0; c < 5; c++)
+        hh[n] = xs[c], kk[n] = yw, nx[n] = 0, ny[n] = -1, n++;
+    double sx = 1 / 0.0687307, sy = 1 / 0.00111548;
+    assert_int_equal(lap_cpm_neumann(hh, kk, nx, ny, n, sx, sy, a, &err), UMP_OK);
+    double lxx = 0, lyy = 0, pxx = 0;
+    for (int j = 0; j < n; j++) {
+        lxx += a[j] * hh[j] * hh[j];
+        lyy += a[j] * ((kk[j] - yw) * (kk[j] - yw) - yw * yw);
+        b[j] = a[j];
+    }
+    assert_int_equal(lap_positive_row_neumann(hh, kk, nx, ny, n, sx, sy, -1, b), 1);
+    for (int j = 0; j < n; j++) {
+        assert_true(b[j] >= 0);
+        pxx += b[j] * hh[j] * hh[j];
+    }
+    print_message("zero-gradient rows: quadratics worst rel. error %.3g, positive %.3g (200 clouds); thin wall "
+                  "cell: lap(x^2) %.9g, lap((y-yw)^2) %.9g, positive lap(x^2) %.6g (exact 2)\n",
+                  worst, worstp, lxx, lyy, pxx);
+    assert_true(fabs(lxx - 2) < 1e-8 && fabs(lyy - 2) < 1e-8);
+    assert_true(fabs(pxx - 2) < 0.02);
+}
+
 static double fsin(double x, double y) { return sin(x + 0.3) * sin(2 * y - 0.1); }
 static double lsin(double x, double y) { return -5 * fsin(x, y); }
 
@@ -933,6 +1031,7 @@ int main(void)
         cmocka_unit_test(test_cpm_quadratic_exact),
         cmocka_unit_test(test_cpm_metric),
         cmocka_unit_test(test_positive_row),
+        cmocka_unit_test(test_cpm_neumann),
         cmocka_unit_test(test_cpm_order),
         cmocka_unit_test(test_cpm4),
         cmocka_unit_test(test_cpm_singular),
