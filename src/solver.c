@@ -274,9 +274,10 @@ typedef struct sol_state {
     double *av;
     double *avT;               /* [rowcap] rows of Eq. 37 when they differ from
                                   the predictor's (zero-gradient T faces), or NULL */
-    unsigned char *tneu;       /* [nb] buoyant: T's boundary particle is a zero
-                                  gradient this step (set_boundary_particles) */
-    ump_idx ntneu;             /* how many */
+    unsigned char *uneu, *tneu; /* [nb] the boundary particle is a zero gradient of
+                                  U, of T (buoyant) this step (set_boundary_particles) */
+    ump_idx nneu;              /* how many are either */
+    ump_idx ndiffer;           /* how many are one and not the other (buoyant) */
     int sepT;                  /* this step's rows for T are st->avT */
     size_t rowcap;
     ump_idx *cnt_cell;         /* [ncells] fluid particles in each cell's stencil */
@@ -413,7 +414,7 @@ void sol_free(sol **pS)
                    su->ru_sx, su->ru_sy, su->st_bnd, su->of_off, su->of_face, st->p, st->pold, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
-                   st->av, st->avT, st->tneu, st->cnt_cell, st->pib, st->hxx, st->hxy, st->hyy, st->fluxb, st->pf0, st->gpx, st->gpy, st->wdamp, st->empty,
+                   st->av, st->avT, st->uneu, st->tneu, st->cnt_cell, st->pib, st->hxx, st->hxy, st->hyy, st->fluxb, st->pf0, st->gpx, st->gpy, st->wdamp, st->empty,
                    st->qa, st->qb, st->qc, st->qx, st->qy, st->pd, st->gq, st->tq_off, st->tq_len, st->tq,
                    st->fu, st->fv, st->fT, st->pout, st->fluxe, st->q, st->fz, st->pfprev, st->pfphi,
                    su->pd_off, su->pd_face, st->bpu0, st->bpv0, su->wall, su->wf_off, su->wf_face};
@@ -646,18 +647,42 @@ static void boundary_velocity(const sol_setup *su, const sol_state *st, ump_idx 
     }
 }
 
+/* The velocity condition of boundary face f is a zero gradient this step:
+ * zeroGradient (outlets), and inletOutlet, outletInlet and
+ * pressureInletOutletVelocity on the side of the flux where they are. */
+static int velocity_zero_gradient(const sol_setup *su, const sol_state *st, ump_idx b, ump_idx f)
+{
+    double phi = st->flux[f];
+    switch (su->u_kind[b]) {
+    case BU_OUTLET:
+        return 1;
+    case BU_INLETOUTLET:
+    case BU_PRESSUREINLETOUTLET:
+        return phi >= 0;
+    case BU_OUTLETINLET:
+        return phi < 0;
+    default:
+        return 0;
+    }
+}
+
 /* Boundary particle values for this step (see the choices at the top), and
  * the totalPressure face values of this step's PPE. */
 static void set_boundary_particles(const sol_setup *su, sol_state *st)
 {
     const mesh2d *m = su->m;
     part_boundary *bp = &st->bp;
+    /* the rows of Eqs. 14 and 37 take a zero-gradient boundary particle as
+     * d/dn = 0 (CPM only; step6_rows) */
+    int cpm = su->set.lap.model == LAP_CPM || su->set.lap.model == LAP_CPM4;
+    st->nneu = st->ndiffer = 0;
     for (ump_idx b = 0; b < bp->n; b++) {
         ump_idx f = bp->face[b], o = m->owner[f];
         double u = st->uc[o], v = st->vc[o];
         boundary_velocity(su, st, b, f, &u, &v);
         bp->u[b] = u;
         bp->v[b] = v;
+        st->uneu[b] = cpm && velocity_zero_gradient(su, st, b, f);
         if (su->p_total[b]) {
             /* totalPressureFvPatchScalarField::updateCoeffs, kinematic, psi
              * none: p0 - 0.5 (1 - pos0(phi)) |U_p|^2 */
@@ -668,20 +693,22 @@ static void set_boundary_particles(const sol_setup *su, sol_state *st)
                 st->pf[f] = pt;
         }
     }
-    if (!su->set.buoyant)
+    if (!su->set.buoyant) {
+        for (ump_idx b = 0; b < bp->n; b++)
+            st->nneu += st->uneu[b];
         return;
+    }
     lsq_gradient(su->g, st->Tc, st->gtx, st->gty);
-    st->ntneu = 0;
     for (ump_idx b = 0; b < bp->n; b++) {
         ump_idx f = bp->face[b];
         double T = su->tb[b];
         st->tneu[b] = 0;
         if (su->t_kind[b] == BT_ZEROGRADIENT || (su->t_kind[b] == BT_INLETOUTLET && st->flux[f] >= 0)) {
             T = zero_gradient_T(su, st, f);
-            /* the rows of Eq. 37 take it as d T/dn = 0 (step6_rows) */
-            st->tneu[b] = su->set.lap.model == LAP_CPM || su->set.lap.model == LAP_CPM4;
-            st->ntneu += st->tneu[b];
+            st->tneu[b] = (unsigned char)cpm;
         }
+        st->nneu += st->uneu[b] || st->tneu[b];
+        st->ndiffer += st->uneu[b] != st->tneu[b];
         bp->T[b] = T;
         /* fixed p_rgh: pi = p_rgh - beta (T_f - TRef) gh_f (the buoyant p_rgh
          * relation of solver.h) */
@@ -1183,6 +1210,8 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
         !(st->bpv0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
         !(st->vb = ump_alloc_array((size_t)nb, sizeof(double))))
         goto nomem;
+    if (!(st->uneu = ump_alloc_array((size_t)nb > 0 ? (size_t)nb : 1, 1)))
+        goto nomem;
     if (s->buoyant) {
         if (!T) {
             rc = UMP_FAIL(err, UMP_ERR_INPUT, "solver: a buoyant case needs the temperature field T");
@@ -1593,7 +1622,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
         st->rp[i + 1] = (ump_idx)e;
     }
     size_t nz = (size_t)st->rp[n];
-    if (nz > st->rowcap || !st->ci || (st->ntneu > 0 && !st->avT)) {
+    if (nz > st->rowcap || !st->ci || (st->ndiffer > 0 && !st->avT)) {
         size_t cap = nz + nz / 2 + 1024;
         ump_idx *ci = ump_realloc_array(st->ci, cap, sizeof *ci);
         if (!ci)
@@ -1603,7 +1632,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
         if (!av)
             return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor: out of memory (%zu entries)", cap);
         st->av = av;
-        if (st->ntneu > 0 || st->avT) {
+        if (st->ndiffer > 0 || st->avT) {
             double *aT = ump_realloc_array(st->avT, cap, sizeof *aT);
             if (!aT)
                 return UMP_FAIL(err, UMP_ERR_NOMEM, "predictor: out of memory (%zu entries)", cap);
@@ -1620,7 +1649,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
     int bal = buoyant && set->balanced;
     int kick = bal || set->p_theta > 0; /* gpx, gpy: grad pi_b and/or th grad p^{n-1/2} */
     int damp = walls_zero_gradient(su);  /* st->wdamp, for step10_correct */
-    int sepT = buoyant && st->ntneu > 0; /* rows of their own for T (st->avT) */
+    int sepT = buoyant && st->ndiffer > 0; /* rows of their own for T (st->avT) */
     st->sepT = sepT;
 #pragma omp parallel num_threads(S->nthreads)
     {
@@ -1649,13 +1678,63 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
              * distances in units of its extents dx, dy (docs/METHOD.md
              * section 8, "Anisotropic cells"); dx = dy is the plain row */
             double sx = set->anisotropic ? 1 / m->dx[c] : 1, sy = set->anisotropic ? 1 / m->dy[c] : 1;
-            if (lap_coeffs_metric(lp, w->h, w->k, nn, l0, sx, sy, w->c0, &e) != UMP_OK &&
+            /* Zero-gradient boundaries in the Laplacian (docs/METHOD.md
+             * section 8): a boundary particle whose condition is a zero
+             * gradient this step (outlets for U, adiabatic walls for T)
+             * enters the CPM fit as d/dn = 0 (lap_cpm_neumann) instead of
+             * as its value, which is the previous step's: next to such a
+             * boundary on a thin cell that value carried almost the whole
+             * row and held the particle (README, "Zero-gradient walls in
+             * the Laplacian"). Normals of U's such samples in w->pv,
+             * w->cy, of T's in w->gv[1], w->gv[2] (zero: a value) */
+            double *unx = w->pv, *uny = w->cy, *tnx = w->gv[1], *tny = w->gv[2];
+            int anyu = 0, anyt = 0, differ = 0;
+            if (st->nneu > 0 && lp->model == LAP_CPM) {
+                int jj = 0;
+                for (size_t j = 0; j < cnt; j++) {
+                    ump_idx r = w->ref[j];
+                    if (r == (ump_idx)i)
+                        continue;
+                    ump_idx b = r < 0 ? -1 - r : -1;
+                    int fu = b >= 0 && st->uneu[b], ft = b >= 0 && buoyant && st->tneu[b];
+                    double nx = b >= 0 ? m->nx[bp->face[b]] : 0, ny = b >= 0 ? m->ny[bp->face[b]] : 0;
+                    unx[jj] = fu ? nx : 0;
+                    uny[jj] = fu ? ny : 0;
+                    tnx[jj] = ft ? nx : 0;
+                    tny[jj++] = ft ? ny : 0;
+                    anyu |= fu;
+                    anyt |= ft;
+                    differ |= fu != ft;
+                }
+            }
+            if (anyu && lap_cpm_neumann(w->h, w->k, unx, uny, nn, sx, sy, w->c0, &e) != UMP_OK) {
+                w->lap_fallbacks++; /* their values, as with another model */
+                anyu = 0;
+            }
+            if (!anyu && lap_coeffs_metric(lp, w->h, w->k, nn, l0, sx, sy, w->c0, &e) != UMP_OK &&
                 (lp->model != LAP_CPM4 || /* CPM4 falls back to CPM, then MPS */
                  lap_coeffs_metric(&cpm, w->h, w->k, nn, l0, sx, sy, w->c0, &e) != UMP_OK)) {
                 w->lap_fallbacks++;
                 if ((rc = lap_coeffs(&mps, w->h, w->k, nn, l0, w->c0, &e)) != UMP_OK) {
                     work_fail(w, rc, &e);
                     continue;
+                }
+            }
+            /* T's row where its zero gradients are not U's: its own */
+            double *aT = NULL;
+            if (sepT && differ) {
+                aT = w->gv[0];
+                if (lap_cpm_neumann(w->h, w->k, anyt ? tnx : NULL, anyt ? tny : NULL, nn, sx, sy, aT, &e) !=
+                    UMP_OK) {
+                    w->lap_fallbacks++;
+                    anyt = 0;
+                    if ((rc = lap_coeffs(&mps, w->h, w->k, nn, l0, aT, &e)) != UMP_OK) {
+                        work_fail(w, rc, &e);
+                        continue;
+                    }
+                } else if (set->positive) {
+                    w->positive_rows += positive_row(set, w, aT, anyt ? tnx : NULL, anyt ? tny : NULL, nn, sx, sy,
+                                                     dkap);
                 }
             }
             /* positiveRows (docs/METHOD.md section 8, "Positive rows"): a
@@ -1672,37 +1751,13 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
              * (blended by the same rule): near a wall dt nu/dx^2 reaches
              * 10^4, and a row 1 % negative turned u^n = 0.005 into u* =
              * 1.80 next to the lid's corner (README, "Graded toward the
-             * lid's downstream corner") */
-            /* Zero-gradient walls in the Laplacian (docs/METHOD.md
-             * section 8): where T's boundary particles in the stencil are
-             * zero gradients (adiabatic walls), Eq. 37's row is fitted
-             * with d T/dn = 0 there instead of their lagged values
-             * (lap_cpm_neumann) into w->gv[0]; else it is this row */
-            double *aT = NULL;
-            if (sepT && lp->model == LAP_CPM) {
-                double *nxs = w->pv, *nys = w->cy;
-                int any = 0, jj = 0;
-                for (size_t j = 0; j < cnt; j++) {
-                    ump_idx r = w->ref[j];
-                    if (r == (ump_idx)i)
-                        continue;
-                    ump_idx f = r < 0 && st->tneu[-1 - r] ? bp->face[-1 - r] : -1;
-                    nxs[jj] = f >= 0 ? m->nx[f] : 0;
-                    nys[jj++] = f >= 0 ? m->ny[f] : 0;
-                    any |= f >= 0;
-                }
-                if (any && lap_cpm_neumann(w->h, w->k, nxs, nys, nn, sx, sy, w->gv[0], &e) == UMP_OK) {
-                    aT = w->gv[0];
-                    if (set->positive)
-                        w->positive_rows += positive_row(set, w, aT, nxs, nys, nn, sx, sy, dkap);
-                } else if (any) {
-                    w->lap_fallbacks++; /* the lagged values, as with another model */
-                }
-            }
+             * lid's downstream corner"). Without a row of its own for T
+             * this row is T's too (dominance at the larger of dt nu, dt
+             * kappa). */
             if (set->positive && lp->model == LAP_CPM) {
-                /* with a row of its own for T, this row is the velocity's */
                 double dmax = aT || dnu > dkap ? dnu : dkap;
-                w->positive_rows += positive_row(set, w, w->c0, NULL, NULL, nn, sx, sy, dmax);
+                w->positive_rows += positive_row(set, w, w->c0, anyu ? unx : NULL, anyu ? uny : NULL, nn, sx, sy,
+                                                 dmax);
             }
             /* L phi_i = sum_j a_j (phi_j - phi_i); boundary particles are
              * Dirichlet data (Eq. 14): their a_j phi_j moves to the RHS */
