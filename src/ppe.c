@@ -426,8 +426,20 @@ static void quadratic_ls(const lsq_grad *g, ump_idx P, double px, double py, con
 double ppe_face_quadratic_flux(const ppe *P, ump_idx f, const double a[2], const double H[3])
 {
     const mesh2d *m = P->m;
-    if (f >= m->ninternal)
+    if (f >= m->ninternal && !P->dirichlet[f])
         return 0.0;
+    if (f >= m->ninternal) { /* Dirichlet: c (q_f - q_A - grad q_A . AA'), q_f = 0 */
+        ump_idx A = m->owner[f];
+        double aox, aoy, gx, gy;
+        (void)foot_offset(m, f, m->cx[A], m->cy[A], &aox, &aoy);
+        double ax = m->cx[A] - m->fx[f], ay = m->cy[A] - m->fy[f];
+        double s = -(a[0] * ax + a[1] * ay + 0.5 * (H[0] * ax * ax + 2 * H[1] * ax * ay + H[2] * ay * ay));
+        if (aox != 0.0 || aoy != 0.0) {
+            quadratic_ls(P->g, A, ax, ay, a, H, &gx, &gy);
+            s -= gx * aox + gy * aoy;
+        }
+        return P->bd_coef[f] * s;
+    }
     ump_idx A = m->owner[f], B = m->neigh[f];
     double bx = m->cx[B] - (m->sepx ? m->sepx[f] : 0.0); /* B seen from A, as build_face_operator */
     double by = m->cy[B] - (m->sepy ? m->sepy[f] : 0.0);

@@ -1256,7 +1256,7 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
                            !(st->pfphi = ump_alloc_array((size_t)nf, sizeof(double)))))
         goto nomem;
     if (s->p_theta > 0)
-        memcpy(st->pfprev, st->pf, (size_t)nf * sizeof *st->pf);
+        memcpy(st->pfprev, s->buoyant && s->balanced ? st->pf0 : st->pf, (size_t)nf * sizeof *st->pf);
     if (s->buoyant) /* the initial p_rgh as pi (solver.h) */
         for (ump_idx c = 0; c < nc; c++)
             st->p[c] -= s->beta * (st->Tc[c] - s->t_ref) * su->ghc[c];
@@ -2335,26 +2335,40 @@ static ump_status balance_buoyancy(sol *S, double dt, sol_stats *stats, ump_err 
             st->fluxb[f] = dt * ppe_face_quadratic_flux(su->pe, f, a, H);
             continue;
         }
-        if (su->p_dir[f]) {
-            Tf = st->bp.T[f - ni];
-        } else {
+        if (!su->p_dir[f]) {
             st->fluxb[f] = 0;
             continue;
         }
+        /* a fixed-pressure face: pi_b takes pi's value there (pi_d zero,
+         * step_face_pressure), and its flux is the Dirichlet rule of
+         * Eq. 25 applied to the same quadratic: at rest the hydrostatic
+         * pressure meets an opening exactly (README, "Balanced buoyancy
+         * on any mesh") */
+        Tf = st->bp.T[f - ni];
+        ump_idx o = m->owner[f];
         double b = -beta * (Tf - set->t_ref); /* Eq. 4 per unit mass */
-        st->fluxb[f] = dt * b * (gx * m->nx[f] + gy * m->ny[f]) * m->len[f];
+        double a[2] = {b * gx, b * gy}, H[3] = {st->hxx[o], st->hxy[o], st->hyy[o]};
+        st->fluxb[f] = dt * ppe_face_quadratic_flux(su->pe, f, a, H);
     }
-    UMP_CALL(ppe_solve(su->pe, st->fluxb, dt, st->pf0, st->pib, err));
+    UMP_CALL(ppe_solve(su->pe, st->fluxb, dt, st->pf, st->pib, err));
     if (su->need_ref) { /* the reference level belongs to pi_d */
         double r = st->pib[set->p_ref_cell] - set->p_ref_value;
         for (ump_idx c = 0; c < m->ncells; c++)
             st->pib[c] -= r;
     }
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pib, st->pf0, st->gpx, st->gpy, 0, 1);
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pib, st->pf, st->gpx, st->gpy, 0, 1);
     return UMP_OK;
 }
 
 /* ---- Step 9: the pressure equation ----------------------------------------- */
+
+/* The fixed face values of the pressure the step's PPE solves for: pi's
+ * (st->pf), or with balanced buoyancy pi_d's, zero: pi_b takes pi's
+ * (balance_buoyancy) */
+static const double *step_face_pressure(const sol *S)
+{
+    return S->su.set.buoyant && S->su.set.balanced ? S->st.pf0 : S->st.pf;
+}
 
 static ump_status step9_pressure(sol *S, double dt, ump_err *err)
 {
@@ -2368,14 +2382,14 @@ static ump_status step9_pressure(sol *S, double dt, ump_err *err)
          * the solve return p^{n+1/2} itself, with its own boundary values
          * and reference, while the correction applies only the increment
          * phi = p^{n+1/2} - th p^{n-1/2} */
-        ppe_face_gradient_flux(su->pe, st->pold, st->pf, st->gflux);
+        ppe_face_gradient_flux(su->pe, st->pold, step_face_pressure(S), st->gflux);
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
         for (ump_idx f = 0; f < m->nfaces; f++)
             st->flux[f] += th * dt * st->gflux[f];
     }
     /* Eqs. 20, 22-25, one solve with the factorization made at start-up */
-    UMP_CALL(ppe_solve(su->pe, st->flux, dt, st->pf, st->p, err));
-    ppe_face_gradient_flux(su->pe, st->p, st->pf, st->gflux);
+    UMP_CALL(ppe_solve(su->pe, st->flux, dt, step_face_pressure(S), st->p, err));
+    ppe_face_gradient_flux(su->pe, st->p, step_face_pressure(S), st->gflux);
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx f = 0; f < m->nfaces; f++)
         st->flux[f] -= dt * st->gflux[f]; /* corrected face flux u^{n+1}_f . A_f */
@@ -2533,13 +2547,13 @@ static ump_status step10_correct(sol *S, double dt, sol_stats *stats, ump_err *e
      * pressureTheta th > 0: the increment phi = p - th p^{n-1/2}, the part
      * path_pressure_kick has not applied */
     double th = su->set.p_theta;
-    const double *phi = st->p, *phif = st->pf;
+    const double *phi = st->p, *pfs = step_face_pressure(S), *phif = pfs;
     if (th > 0) {
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
         for (ump_idx c = 0; c < nc; c++)
             st->pold[c] = st->p[c] - th * st->pold[c];
         for (ump_idx f = m->ninternal; f < m->nfaces; f++)
-            st->pfphi[f] = st->pf[f] - th * st->pfprev[f];
+            st->pfphi[f] = pfs[f] - th * st->pfprev[f];
         phi = st->pold;
         phif = st->pfphi;
     }
@@ -2572,7 +2586,7 @@ static ump_status step10_correct(sol *S, double dt, sol_stats *stats, ump_err *e
     /* r^{n+1} = r^n + dt u^{n+1} (Eq. 7) */
     move_particles(S, P->u, P->v, dt, &stats->walled);
     if (th > 0) /* the face values that belong to p^{n+1/2}, the next step's pold */
-        memcpy(st->pfprev, st->pf, (size_t)m->nfaces * sizeof *st->pf);
+        memcpy(st->pfprev, pfs, (size_t)m->nfaces * sizeof *st->pf);
     /* mesh velocity, Eq. 36, with the LS gradient of Eq. 26; with
      * anisotropicCells its walls carry the owner's value (su->gw,
      * docs/METHOD.md section 8, "Walls in the correction"): in a cell 6e-5

@@ -95,6 +95,7 @@ void ppe_face_gradient_flux(const ppe *P, const double *p, const double *pf, dou
  * flux grad q_f . A_f that ppe_face_gradient_flux would give for the cell
  * field q, so fluxes made of it are solved exactly by a global quadratic
  * with that gradient and Hessian (the balanced buoyancy, docs/METHOD.md
- * section 8). 0 on boundary faces. */
+ * section 8). Dirichlet faces: their rule applied to q with q(x_f) = 0;
+ * 0 on the other boundary faces. */
 double ppe_face_quadratic_flux(const ppe *P, ump_idx f, const double a[2], const double H[3]);
 #endif
