@@ -9,7 +9,11 @@
 # 0.5, and graded 1000:1 toward its walls, so anisotropicCells is on), and on 25 600 triangles for 5 steps (threaded binning); a
 # 20 x 10 channel with the boundary conditions of issue 15 (inlet
 # totalPressure + pressureInletOutletVelocity with tangentialVelocity,
-# outlet outletInlet U + uniformFixedValue sine p, one wall slip), 10 steps.
+# outlet outletInlet U + uniformFixedValue sine p, one wall slip), 10 steps;
+# the buoyant stratified box graded 200:1 toward its walls with its cold wall
+# an opening (balanced buoyancy with pi_b's curvature-corrected gradients,
+# T's own rows with zero-gradient adiabatic walls, fixed p_rgh), from T =
+# 0.5, 10 steps of 0.5 s.
 # Asserts:
 #   - both runs report their thread count in the log banner;
 #   - U, p and every file of the particle cloud at the last time are
@@ -132,7 +136,20 @@ boundaryField
 PF
 (cd "$bcs" && blockMesh > log.blockMesh 2>&1) || { echo "FAIL: blockMesh (bcs)"; exit 1; }
 
-for c in "$cav:0.1" "$cav4:0.1" "$cavw:0.1" "$tg:0.125" "$big:0.0078125" "$bcs:0.05"; do
+# the stratified box, graded, with an opening, 10 steps of 0.5 s
+strat=$work/stratified
+cp -r "$top/tests/cases/buoyantStratified" "$strat"
+sed -i 's/simpleGrading (1 1 1)/simpleGrading (((0.5 0.5 200) (0.5 0.5 0.005)) ((0.5 0.5 200) (0.5 0.5 0.005)) 1)/' \
+    "$strat/system/blockMeshDict"
+sed -i 's/^endTime .*/endTime 5;/; s/^deltaT .*/deltaT 0.5;/; s/^writeInterval .*/writeInterval 10;/' \
+    "$strat/system/controlDict"
+(cd "$strat" && blockMesh > log.blockMesh 2>&1 &&
+    foamDictionary 0/U -entry boundaryField/cold -set \
+        "{ type inletOutlet; inletValue uniform (0 0 0); value uniform (0 0 0); }" > log.foamDictionary 2>&1 &&
+    foamDictionary 0/p_rgh -entry boundaryField/cold -set "{ type fixedValue; value uniform 0; }" \
+        >> log.foamDictionary 2>&1) || { echo "FAIL: blockMesh or foamDictionary (stratified)"; exit 1; }
+
+for c in "$cav:0.1" "$cav4:0.1" "$cavw:0.1" "$tg:0.125" "$big:0.0078125" "$bcs:0.05" "$strat:5"; do
     dir=${c%%:*} t=${c##*:} name=$(basename "${c%%:*}")
     for n in 1 2; do
         r=$work/$name-$n
@@ -145,8 +162,8 @@ for c in "$cav:0.1" "$cav4:0.1" "$cavw:0.1" "$tg:0.125" "$big:0.0078125" "$bcs:0
     a=$work/$name-1/$t b=$work/$name-2/$t
     [ -d "$a/lagrangian/umppmCloud" ] || { echo "FAIL: $name: no cloud at $t"; fail=1; continue; }
     ndiff=0
-    for f in U p $(cd "$a" && ls lagrangian/umppmCloud); do
-        case $f in U|p) rel=$f ;; *) rel=lagrangian/umppmCloud/$f ;; esac
+    for f in U p $([ -f "$a/T" ] && echo T) $(cd "$a" && ls lagrangian/umppmCloud); do
+        case $f in U|p|T) rel=$f ;; *) rel=lagrangian/umppmCloud/$f ;; esac
         if ! cmp -s "$a/$rel" "$b/$rel"; then
             echo "FAIL: $name: $rel differs between 1 and 2 threads"
             ndiff=$((ndiff + 1))
