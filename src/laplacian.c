@@ -246,7 +246,8 @@ static inline __attribute__((always_inline)) ump_status cpm_coeffs2(const double
  * own: the solver gave its boundary particle T_P + grad T_P . d_t from the
  * previous step, a Dirichlet value in the implicit row. Next to such a
  * wall on a thin cell that value carries almost the whole row (dt kappa
- * a_b ~ 10^3 on cells 1000:1), so the particle was held at the lagged
+ * a_b ~ 1 600 on the wall cells of a box graded 200:1, against 7.5 for the
+ * particles along the wall), so the particle was held at the lagged
  * value and the diffusion along the wall all but stopped (README,
  * "Zero-gradient walls in the Laplacian"). Here such a sample is a
  * derivative row of the fit instead, d phi/dn (x_b) = 0 in the same Taylor

@@ -233,7 +233,8 @@ typedef struct sol_state {
     double *pfprev, *pfphi;    /* [nfaces] pressureTheta > 0: pf of pold, of the increment */
     double *bpu0, *bpv0;       /* [nb] boundary particle velocities saved during Step 8 */
     double *pib, *fluxb, *pf0; /* buoyant (balanced): pi_b [ncells], its face fluxes
-                                  dt b_f . A_f [nfaces], zero face values [nfaces] */
+                                  [nfaces] (balance_buoyancy), and pi_d's fixed face
+                                  values, zero [nfaces] (step_face_pressure) */
     double *hxx, *hxy, *hyy;   /* buoyant: the buoyancy's gradient -beta sym(g grad T_P)
                                   [ncells], pi_b's Hessian (balance_buoyancy) */
     /* boundary values of this step per boundary face b = f - ninternal */
@@ -279,6 +280,7 @@ typedef struct sol_state {
     ump_idx nneu;              /* how many are either */
     ump_idx ndiffer;           /* how many are one and not the other (buoyant) */
     int sepT;                  /* this step's rows for T are st->avT */
+    int pold_pd;               /* pold holds the last step's pi_d (step10_correct) */
     size_t rowcap;
     ump_idx *cnt_cell;         /* [ncells] fluid particles in each cell's stencil */
     ump_idx *empty;            /* [ncells] the cells without a particle (refill_carried) */
@@ -1722,20 +1724,22 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
             }
             /* T's row where its zero gradients are not U's: its own */
             double *aT = NULL;
-            if (sepT && differ) {
+            if (sepT && differ) { /* falls back as U's row: values, then MPS */
                 aT = w->gv[0];
-                if (lap_cpm_neumann(w->h, w->k, anyt ? tnx : NULL, anyt ? tny : NULL, nn, sx, sy, aT, &e) !=
-                    UMP_OK) {
+                if (anyt && lap_cpm_neumann(w->h, w->k, tnx, tny, nn, sx, sy, aT, &e) != UMP_OK) {
                     w->lap_fallbacks++;
                     anyt = 0;
+                }
+                if (!anyt && lap_coeffs_metric(&cpm, w->h, w->k, nn, l0, sx, sy, aT, &e) != UMP_OK) {
+                    w->lap_fallbacks++;
                     if ((rc = lap_coeffs(&mps, w->h, w->k, nn, l0, aT, &e)) != UMP_OK) {
                         work_fail(w, rc, &e);
                         continue;
                     }
-                } else if (set->positive) {
+                }
+                if (set->positive)
                     w->positive_rows += positive_row(set, w, aT, anyt ? tnx : NULL, anyt ? tny : NULL, nn, sx, sy,
                                                      dkap);
-                }
             }
             /* positiveRows (docs/METHOD.md section 8, "Positive rows"): a
              * CPM row whose negative coefficients exceed SOL_POSITIVE_TAU
@@ -1996,9 +2000,13 @@ static void path_pressure_kick(sol *S, sol_stats *stats)
     size_t n = P->n;
     double th = su->set.p_theta;
     int bal = su->set.buoyant && su->set.balanced;
+    /* balanced: pold is the last step's pi_d (kept by step10_correct);
+     * at the first step p less this step's pi_b */
+    if (!bal || !st->pold_pd) {
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
-    for (ump_idx c = 0; c < nc; c++)
-        st->pold[c] = bal ? st->p[c] - st->pib[c] : st->p[c];
+        for (ump_idx c = 0; c < nc; c++)
+            st->pold[c] = bal ? st->p[c] - st->pib[c] : st->p[c];
+    }
     /* us, vs are free until the predictor solve */
     stats->mls_fallbacks +=
         (int)particle_pressure_gradient(S, st->pold, st->pfprev, st->us, st->vs, walls_zero_gradient(su), 0);
@@ -2278,12 +2286,13 @@ static void interpolation_error(sol *S)
  * Boussinesq source of Eq. 4 into the predictor). The pressure is split as
  * pi = pi_b + pi_d: pi_b is the part that balances the buoyancy b =
  * -beta (T^n - TRef) g, from the PPE's own matrix (Eqs. 20, 25) with the
- * face fluxes dt b_f . A_f (interior and fixed-pressure faces; zero where
- * the velocity is prescribed, as u* there) and fixed values 0; the
+ * face fluxes of the hydrostatic quadratic (interior and fixed-pressure
+ * faces, below; zero where the velocity is prescribed, as u* there) and
+ * pi's fixed face values (pi_d's are then zero, step_face_pressure); the
  * predictor then carries b - grad pi_b at each particle (the MLS
  * derivative of Eq. 10 at r^n), and the step's PPE gives pi_d, which the
  * correction applies as usual. At rest in a stable stratification b -
- * grad pi_b vanishes to the accuracy of the MLS derivative, so the
+ * grad pi_b vanishes (exactly for linear T, on any mesh), so the
  * viscous predictor no longer damps the buoyancy near walls without the
  * pressure that balances it (the O(dt) spurious velocity of the source
  * splitting). b_f uses T_f, the mean of the two cells' T_P + grad T_P .
@@ -2595,13 +2604,20 @@ static ump_status step10_correct(sol *S, double dt, sol_stats *stats, ump_err *e
      * where u*_P = 0 */
     lsq_gradient(walls_zero_gradient(su) ? su->gw : su->g, phi, st->gx, st->gy);
     int bal = su->set.buoyant && su->set.balanced;
+    /* pressureTheta: pi_d, the next step's pold (path_pressure_kick), whose
+     * face values are step_face_pressure's (pfprev); p - pi_b there would
+     * mix in the change of pi_b from this step to the next */
+    int keep = bal && th > 0;
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx c = 0; c < nc; c++) {
         st->uc[c] = st->usc[c] - dt * st->gx[c];
         st->vc[c] = st->vsc[c] - dt * st->gy[c];
+        if (keep)
+            st->pold[c] = st->p[c];
         if (bal)
             st->p[c] += st->pib[c]; /* pi = pi_b + pi_d */
     }
+    st->pold_pd = keep;
     if (tq)
         UMP_CALL(bound_cell_velocity(S, stats, err));
     return UMP_OK;

@@ -92,7 +92,9 @@ int lap_positive_row(const double *h, const double *k, int n, double sx, double 
  * sample j with (nx[j], ny[j]) != 0 is a point of a zero-gradient boundary
  * with that unit normal; it enters the fit as the row d phi/dn = 0 and
  * gets a_j = 0, so the row is implicit in the other samples only. nx, ny
- * NULL: lap_coeffs_metric's CPM row (up to rounding). UMP_ERR_SINGULAR if
+ * NULL: lap_coeffs_metric's CPM row (up to rounding; a neighbour at the
+ * particle's own position is left out here, where lap_coeffs_metric falls
+ * back to its isotropic general loop). UMP_ERR_SINGULAR if
  * the samples do not determine the five derivatives. */
 ump_status lap_cpm_neumann(const double *h, const double *k, const double *nx, const double *ny, int n,
                            double sx, double sy, double *a, ump_err *err);
