@@ -403,24 +403,28 @@ ump_status ppe_solve(ppe *P, const double *flux, double dt, const double *pf, do
     return residual(P, b, p, &P->res, err);
 }
 
-/* The LS gradient (Eq. 26) at P, relative to x_f, of the quadratic q of
- * ppe_face_quadratic_flux: sum_k g_k (q(x_j) - q(x_P)), x_P = x_f + (px, py). */
-static void quadratic_ls(const lsq_grad *g, ump_idx P, double px, double py, const double a[2],
-                         const double H[3], double *gx, double *gy)
+/* q(x) = a . x + 1/2 x^T H x, x relative to x_f (ppe_face_quadratic_flux) */
+static inline double quad_at(const double a[2], const double H[3], double x, double y)
 {
+    return a[0] * x + a[1] * y + 0.5 * (H[0] * x * x + 2 * H[1] * x * y + H[2] * y * y);
+}
+
+/* grad q_P . o with the LS gradient (Eq. 26) at P = x_f + (px, py):
+ * sum_k g_k . o (q(x_j) - q(x_P)); 0 for a zero offset o */
+static double quadratic_ls_dot(const lsq_grad *g, ump_idx P, double px, double py, const double a[2],
+                               const double H[3], double ox, double oy)
+{
+    if (ox == 0.0 && oy == 0.0)
+        return 0.0;
     const mesh2d *m = g->m;
-    double qP = a[0] * px + a[1] * py + 0.5 * (H[0] * px * px + 2 * H[1] * px * py + H[2] * py * py);
-    double sx = 0.0, sy = 0.0;
+    double qP = quad_at(a, H, px, py), s = 0.0;
     for (ump_idx k = m->n1_off[P]; k < m->n1_off[P + 1]; k++) {
         ump_idx j = m->n1[k];
         double x = px + m->cx[j] + (m->n1_sx ? m->n1_sx[k] : 0.0) - m->cx[P];
         double y = py + m->cy[j] + (m->n1_sy ? m->n1_sy[k] : 0.0) - m->cy[P];
-        double d = a[0] * x + a[1] * y + 0.5 * (H[0] * x * x + 2 * H[1] * x * y + H[2] * y * y) - qP;
-        sx += g->wx[k] * d;
-        sy += g->wy[k] * d;
+        s += (g->wx[k] * ox + g->wy[k] * oy) * (quad_at(a, H, x, y) - qP);
     }
-    *gx = sx;
-    *gy = sy;
+    return s;
 }
 
 double ppe_face_quadratic_flux(const ppe *P, ump_idx f, const double a[2], const double H[3])
@@ -428,38 +432,22 @@ double ppe_face_quadratic_flux(const ppe *P, ump_idx f, const double a[2], const
     const mesh2d *m = P->m;
     if (f >= m->ninternal && !P->dirichlet[f])
         return 0.0;
-    if (f >= m->ninternal) { /* Dirichlet: c (q_f - q_A - grad q_A . AA'), q_f = 0 */
-        ump_idx A = m->owner[f];
-        double aox, aoy, gx, gy;
-        (void)foot_offset(m, f, m->cx[A], m->cy[A], &aox, &aoy);
-        double ax = m->cx[A] - m->fx[f], ay = m->cy[A] - m->fy[f];
-        double s = -(a[0] * ax + a[1] * ay + 0.5 * (H[0] * ax * ax + 2 * H[1] * ax * ay + H[2] * ay * ay));
-        if (aox != 0.0 || aoy != 0.0) {
-            quadratic_ls(P->g, A, ax, ay, a, H, &gx, &gy);
-            s -= gx * aox + gy * aoy;
-        }
-        return P->bd_coef[f] * s;
-    }
-    ump_idx A = m->owner[f], B = m->neigh[f];
-    double bx = m->cx[B] - (m->sepx ? m->sepx[f] : 0.0); /* B seen from A, as build_face_operator */
-    double by = m->cy[B] - (m->sepy ? m->sepy[f] : 0.0);
-    double aox, aoy, box, boy;
+    ump_idx A = m->owner[f];
+    double aox, aoy;
     double dA = foot_offset(m, f, m->cx[A], m->cy[A], &aox, &aoy);
-    double dB = foot_offset(m, f, bx, by, &box, &boy);
     double ax = m->cx[A] - m->fx[f], ay = m->cy[A] - m->fy[f]; /* x_A - x_f */
-    double qx = bx - m->fx[f], qy = by - m->fy[f];             /* x_B - x_f */
-    double qA = a[0] * ax + a[1] * ay + 0.5 * (H[0] * ax * ax + 2 * H[1] * ax * ay + H[2] * ay * ay);
-    double qB = a[0] * qx + a[1] * qy + 0.5 * (H[0] * qx * qx + 2 * H[1] * qx * qy + H[2] * qy * qy);
-    double s = qB - qA; /* Eq. 25: c [q_B - q_A + grad q_B . BB' - grad q_A . AA'] */
-    double gx, gy;
-    if (box != 0.0 || boy != 0.0) {
-        quadratic_ls(P->g, B, qx, qy, a, H, &gx, &gy);
-        s += gx * box + gy * boy;
-    }
-    if (aox != 0.0 || aoy != 0.0) {
-        quadratic_ls(P->g, A, ax, ay, a, H, &gx, &gy);
-        s -= gx * aox + gy * aoy;
-    }
+    /* - q_A - grad q_A . AA' (q_f = 0 at the face) */
+    double s = -quad_at(a, H, ax, ay) - quadratic_ls_dot(P->g, A, ax, ay, a, H, aox, aoy);
+    if (f >= m->ninternal) /* Dirichlet: c (q_f - q_A - grad q_A . AA') */
+        return P->bd_coef[f] * s;
+    /* Eq. 25: c [q_B - q_A + grad q_B . BB' - grad q_A . AA'], B seen from
+     * A as build_face_operator */
+    ump_idx B = m->neigh[f];
+    double bx = m->cx[B] - (m->sepx ? m->sepx[f] : 0.0), by = m->cy[B] - (m->sepy ? m->sepy[f] : 0.0);
+    double box, boy;
+    double dB = foot_offset(m, f, bx, by, &box, &boy);
+    double qx = bx - m->fx[f], qy = by - m->fy[f]; /* x_B - x_f */
+    s += quad_at(a, H, qx, qy) + quadratic_ls_dot(P->g, B, qx, qy, a, H, box, boy);
     return m->len[f] / (dA - dB) * s;
 }
 

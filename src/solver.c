@@ -1567,6 +1567,27 @@ static double bound_fit(sol_work *w, const double *s, size_t n, double v, double
 
 /* ---- Step 6: the implicit predictor ------------------------------------------ */
 
+/* The Laplacian row of a particle into a [nn] (offsets w->h, w->k, metric
+ * sx, sy): with zero-gradient samples (*neu, normals nx, ny) CPM's row with
+ * them as d/dn = 0 (lap_cpm_neumann); else, or if that fails (*neu = 0),
+ * the model lp's row, CPM4 falling back to CPM, then MPS. Fall-backs are
+ * counted in w->lap_fallbacks. */
+static ump_status laplacian_row(sol_work *w, const lap_params *lp, int *neu, const double *nx, const double *ny,
+                                int nn, double l0, double sx, double sy, double *a, ump_err *e)
+{
+    static const lap_params mps = {LAP_MPS, 3.1}, cpm = {LAP_CPM, 0};
+    if (*neu && lap_cpm_neumann(w->h, w->k, nx, ny, nn, sx, sy, a, e) == UMP_OK)
+        return UMP_OK;
+    if (*neu)
+        w->lap_fallbacks++; /* their values, as with another model */
+    *neu = 0;
+    if (lap_coeffs_metric(lp, w->h, w->k, nn, l0, sx, sy, a, e) == UMP_OK ||
+        (lp->model == LAP_CPM4 && lap_coeffs_metric(&cpm, w->h, w->k, nn, l0, sx, sy, a, e) == UMP_OK))
+        return UMP_OK;
+    w->lap_fallbacks++;
+    return lap_coeffs(&mps, w->h, w->k, nn, l0, a, e);
+}
+
 /* Insertion sort of one row by column (only when particles are not sorted
  * by cell: sortInterval 0 or > 1). */
 static void sort_row(ump_idx *ci, double *av, double *avT, ump_idx n)
@@ -1646,7 +1667,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
     int buoyant = set->buoyant;
     double dnu = dt * set->nu, dkap = dt * set->kappa;
     double gx = buoyant ? set->g[m->ax[0]] : 0, gy = buoyant ? set->g[m->ax[1]] : 0;
-    const lap_params mps = {LAP_MPS, 3.1}, cpm = {LAP_CPM, 0};
+    const lap_params cpm = {LAP_CPM, 0};
     const part_boundary *bp = &st->bp;
     int bal = buoyant && set->balanced;
     int kick = bal || set->p_theta > 0; /* gpx, gpy: grad pi_b and/or th grad p^{n-1/2} */
@@ -1709,33 +1730,17 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                     differ |= fu != ft;
                 }
             }
-            if (anyu && lap_cpm_neumann(w->h, w->k, unx, uny, nn, sx, sy, w->c0, &e) != UMP_OK) {
-                w->lap_fallbacks++; /* their values, as with another model */
-                anyu = 0;
-            }
-            if (!anyu && lap_coeffs_metric(lp, w->h, w->k, nn, l0, sx, sy, w->c0, &e) != UMP_OK &&
-                (lp->model != LAP_CPM4 || /* CPM4 falls back to CPM, then MPS */
-                 lap_coeffs_metric(&cpm, w->h, w->k, nn, l0, sx, sy, w->c0, &e) != UMP_OK)) {
-                w->lap_fallbacks++;
-                if ((rc = lap_coeffs(&mps, w->h, w->k, nn, l0, w->c0, &e)) != UMP_OK) {
-                    work_fail(w, rc, &e);
-                    continue;
-                }
+            if ((rc = laplacian_row(w, lp, &anyu, unx, uny, nn, l0, sx, sy, w->c0, &e)) != UMP_OK) {
+                work_fail(w, rc, &e);
+                continue;
             }
             /* T's row where its zero gradients are not U's: its own */
             double *aT = NULL;
-            if (sepT && differ) { /* falls back as U's row: values, then MPS */
+            if (sepT && differ) {
                 aT = w->gv[0];
-                if (anyt && lap_cpm_neumann(w->h, w->k, tnx, tny, nn, sx, sy, aT, &e) != UMP_OK) {
-                    w->lap_fallbacks++;
-                    anyt = 0;
-                }
-                if (!anyt && lap_coeffs_metric(&cpm, w->h, w->k, nn, l0, sx, sy, aT, &e) != UMP_OK) {
-                    w->lap_fallbacks++;
-                    if ((rc = lap_coeffs(&mps, w->h, w->k, nn, l0, aT, &e)) != UMP_OK) {
-                        work_fail(w, rc, &e);
-                        continue;
-                    }
+                if ((rc = laplacian_row(w, lp, &anyt, tnx, tny, nn, l0, sx, sy, aT, &e)) != UMP_OK) {
+                    work_fail(w, rc, &e);
+                    continue;
                 }
                 if (set->positive)
                     w->positive_rows += positive_row(set, w, aT, anyt ? tnx : NULL, anyt ? tny : NULL, nn, sx, sy,
@@ -2318,45 +2323,40 @@ static ump_status balance_buoyancy(sol *S, double dt, sol_stats *stats, ump_err 
         st->hxy[c] = -0.5 * beta * (gx * st->gty[c] + gy * st->gtx[c]);
         st->hyy[c] = -beta * gy * st->gty[c];
     }
+    /* The face flux is Eq. 25 applied to the quadratic with b_f and that
+     * Hessian at x_f, not b_f . A_f: Eq. 25's two-point difference is the
+     * derivative at the middle of A'B', not at the face, and its
+     * non-orthogonal terms use LS gradients inexact for quadratics. So the
+     * fluxes of a linear T along g are exactly those of the hydrostatic
+     * pressure and the solve returns it: on cells graded 200:1, b_f . A_f
+     * left 4e-5 m/s after one step of a fluid at rest (README, "Balanced
+     * buoyancy on any mesh"). On a fixed-pressure face pi_b takes pi's
+     * value (pi_d zero, step_face_pressure) and the flux is Eq. 25's
+     * Dirichlet rule for the same quadratic, so at rest the hydrostatic
+     * pressure meets an opening exactly. */
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx f = 0; f < m->nfaces; f++) {
-        double Tf;
+        double Tf, H[3];
+        ump_idx o = m->owner[f];
         if (f < ni) {
-            ump_idx o = m->owner[f], q = m->neigh[f];
+            ump_idx q = m->neigh[f];
             double sx = m->sepx ? m->sepx[f] : 0, sy = m->sepy ? m->sepy[f] : 0;
             double To = st->Tc[o] + st->gtx[o] * (m->fx[f] - m->cx[o]) + st->gty[o] * (m->fy[f] - m->cy[o]);
             double Tq = st->Tc[q] + st->gtx[q] * (m->fx[f] + sx - m->cx[q]) +
                         st->gty[q] * (m->fy[f] + sy - m->cy[q]);
             Tf = 0.5 * (To + Tq);
-            /* The face flux is Eq. 25 applied to the quadratic with b_f
-             * and that Hessian at x_f, not b_f . A_f: Eq. 25's two-point
-             * difference is the derivative at the middle of A'B', not at
-             * the face, and its non-orthogonal terms use LS gradients
-             * inexact for quadratics. So the fluxes of a linear T along g
-             * are exactly those of the hydrostatic pressure and the solve
-             * returns it: on cells graded 200:1, b_f . A_f left 4e-5 m/s
-             * after one step of a fluid at rest (README, "Balanced
-             * buoyancy on any mesh") */
-            double b = -beta * (Tf - set->t_ref); /* Eq. 4 per unit mass */
-            double a[2] = {b * gx, b * gy};
-            double H[3] = {0.5 * (st->hxx[o] + st->hxx[q]), 0.5 * (st->hxy[o] + st->hxy[q]),
-                           0.5 * (st->hyy[o] + st->hyy[q])};
-            st->fluxb[f] = dt * ppe_face_quadratic_flux(su->pe, f, a, H);
-            continue;
-        }
-        if (!su->p_dir[f]) {
+            H[0] = 0.5 * (st->hxx[o] + st->hxx[q]);
+            H[1] = 0.5 * (st->hxy[o] + st->hxy[q]);
+            H[2] = 0.5 * (st->hyy[o] + st->hyy[q]);
+        } else if (su->p_dir[f]) {
+            Tf = st->bp.T[f - ni];
+            H[0] = st->hxx[o], H[1] = st->hxy[o], H[2] = st->hyy[o];
+        } else {
             st->fluxb[f] = 0;
             continue;
         }
-        /* a fixed-pressure face: pi_b takes pi's value there (pi_d zero,
-         * step_face_pressure), and its flux is the Dirichlet rule of
-         * Eq. 25 applied to the same quadratic: at rest the hydrostatic
-         * pressure meets an opening exactly (README, "Balanced buoyancy
-         * on any mesh") */
-        Tf = st->bp.T[f - ni];
-        ump_idx o = m->owner[f];
         double b = -beta * (Tf - set->t_ref); /* Eq. 4 per unit mass */
-        double a[2] = {b * gx, b * gy}, H[3] = {st->hxx[o], st->hxy[o], st->hyy[o]};
+        double a[2] = {b * gx, b * gy};
         st->fluxb[f] = dt * ppe_face_quadratic_flux(su->pe, f, a, H);
     }
     UMP_CALL(ppe_solve(su->pe, st->fluxb, dt, st->pf, st->pib, err));

@@ -79,6 +79,16 @@ static double quad_rel_error(const double *a, int n, const quad *f, double xi, d
     return fabs(*lap - *exact) / fmax(fabs(*exact), sc);
 }
 
+/* A quadratic with random coefficients of order 1 at the spacing h; wall
+ * != 0: without the y and xy terms (zero y-derivative on y = 0). */
+static quad random_quad(double h, int wall)
+{
+    quad f;
+    for (int i = 0; i < 6; i++)
+        f.q[i] = wall && (i == 2 || i == 3) ? 0 : tu_rnd_in(-1, 1) / (i == 0 ? 1 : i < 3 ? h : h * h);
+    return f;
+}
+
 static const lap_params CPM = {LAP_CPM, 0};
 static const lap_params MPS = {LAP_MPS, 2.1};
 
@@ -94,9 +104,7 @@ static void test_cpm_quadratic_exact(void **state)
         double h = pow(10, tu_rnd_in(-4, 2));
         double xi, yi;
         int n = cloud24(h, 0.45, tu_rnd_in(-10, 10) * h, tu_rnd_in(-10, 10) * h, &xi, &yi, hh, kk);
-        quad f;
-        for (int i = 0; i < 6; i++)
-            f.q[i] = tu_rnd_in(-1, 1) / (i == 0 ? 1 : i < 3 ? h : h * h);
+        quad f = random_quad(h, 0);
         ump_err err;
         assert_int_equal(lap_coeffs(&CPM, hh, kk, n, h, a, &err), UMP_OK);
         double lap, exact, rel = quad_rel_error(a, n, &f, xi, yi, hh, kk, phi, &lap, &exact);
@@ -195,9 +203,7 @@ static void test_positive_row(void **state)
         assert_int_equal(lap_positive_row(hh, kk, n, 1, 1, -1, a), 1); /* tau < 0: always */
         for (int j = 0; j < n; j++)
             assert_true(a[j] >= 0);
-        quad f;
-        for (int i = 0; i < 6; i++)
-            f.q[i] = tu_rnd_in(-1, 1) / (i == 0 ? 1 : i < 3 ? h : h * h);
+        quad f = random_quad(h, 0);
         double lap, exact, rel = quad_rel_error(a, n, &f, xi, yi, hh, kk, phi, &lap, &exact);
         worst = fmax(worst, rel);
         if (!(rel <= 1e-4))
@@ -296,9 +302,7 @@ static void test_cpm_neumann(void **state)
         assert_int_equal(lap_cpm_neumann(hh, kk, nx, ny, n, sx, sy, a, &err), UMP_OK);
         for (int j = n - 5; j < n; j++)
             assert_true(a[j] == 0);
-        quad f;
-        for (int i = 0; i < 6; i++)
-            f.q[i] = i == 2 || i == 3 ? 0 : tu_rnd_in(-1, 1) / (i == 0 ? 1 : i < 3 ? h : h * h);
+        quad f = random_quad(h, 1);
         double lap, exact, rel = quad_rel_error(a, n, &f, xi, yi, hh, kk, phi, &lap, &exact);
         worst = fmax(worst, rel);
         if (!(rel <= 1e-9))
