@@ -1,18 +1,22 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # bench/vsOpenFOAM.sh [-cases "cavity40 cavity80 cavity160 cavity320 taylorGreen6400 makeRunCavity"]
+#                     (more: buoyantCavity40 buoyantCavity80)
 #                     [-steps N | -steps "CASE=N ..."] [-threads "1 2"] [-work DIR]
 #                     [-umppm PATH] [-decompose simple|scotch] [-o FILE]
-# umppmFoam against icoFoam (OpenFOAM v1912), side by side in one run: for
+# umppmFoam against icoFoam (OpenFOAM v1912), and on the buoyant cases
+# against buoyantBoussinesqPimpleFoam (the OpenFOAM solver below), side by
+# side in one run: for
 # each case one mesh (made once) and one fixed deltaT (adjustTimeStep no),
 # a fixed number of steps, and these runs, each in its own copy of the case
 # (WORK/CASE/<run>, log in WORK/CASE/<run>/log):
 #   umppm-ompT  umppmFoam with OMP_NUM_THREADS=T for each T of -threads
-#   ico-PCG     icoFoam serial, the case's own p/pFinal solver (PCG, DIC)
-#   ico-GAMG    icoFoam serial, p/pFinal by GAMG (smoother GaussSeidel) with
-#               the PCG's tolerance and relTol (pFinal inherits $p)
+#   ico-PCG     the OpenFOAM solver serial, the case's own p/pFinal (p_rgh)
+#               solver (PCG, DIC)
+#   ico-GAMG    the same, p/pFinal by GAMG (smoother GaussSeidel) with the
+#               PCG's tolerance and relTol (pFinal inherits $p)
 #   ico-mpi2    decomposePar (2 subdomains, -decompose method, default simple
-#               (2 1 1)) then mpirun -np 2 icoFoam -parallel (PCG as ico-PCG)
+#               (2 1 1)) then mpirun -np 2 of it with -parallel (PCG)
 # Cases:
 #   cavityN          (N = 40 80 160 320) OpenFOAM's icoFoam/cavity/cavity
 #                    tutorial with its own fvSchemes/fvSolution/0/, blocks
@@ -30,6 +34,15 @@
 #                    adjustTimeStep no at its deltaT 0.003125 (maxCo 0.25 /
 #                    (2n), Allrun's first step; umppmFoam and icoFoam alike).
 #                    160 steps.
+#   buoyantCavityN   (N = 40 80; not run by default) the de Vahl Davis
+#                    cavity of tests/cases/buoyantCavity (Ra 1e4, Pr 0.71,
+#                    unit square, as test_buoyant.sh runs it), blocks
+#                    (N N 1), from rest, fixed deltaT 10/N s (Courant number
+#                    about 0.4 at the steady flow's 16-20 alpha/L), against
+#                    buoyantBoussinesqPimpleFoam with the case's own
+#                    fvSchemes/fvSolution (PIMPLE, 2 correctors); umppmFoam
+#                    with its defaults (UMPPMstar, CPM, balanced buoyancy).
+#                    Default steps 200 100.
 # All cases: endTime = steps*deltaT, writeControl timeStep, writeInterval =
 # steps (only the end time is written, by every run). A run that fails or
 # does not make exactly the steps asked stops the script (exit 1, the run
@@ -70,8 +83,9 @@
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 . "$top/bench/cases.sh" # cavity_case; setEntry, logSteps; exports WM_PROJECT_DIR
-allcases="cavity40 cavity80 cavity160 cavity320 taylorGreen6400 makeRunCavity"
-cases=$allcases stepsopt="" threads="1 2" work="" umppm="" decompose=simple out=""
+defcases="cavity40 cavity80 cavity160 cavity320 taylorGreen6400 makeRunCavity"
+allcases="$defcases buoyantCavity40 buoyantCavity80"
+cases=$defcases stepsopt="" threads="1 2" work="" umppm="" decompose=simple out=""
 usage() {
     echo "usage: bench/vsOpenFOAM.sh [-cases \"$allcases\"] [-steps N | -steps \"CASE=N ...\"]" \
         "[-threads \"1 2\"] [-work DIR] [-umppm PATH] [-decompose simple|scotch] [-o FILE]" >&2
@@ -87,7 +101,8 @@ while [ $# -gt 0 ]; do
     shift 2
 done
 die() { echo "vsOpenFOAM.sh: $*" >&2; exit 1; }
-declare -A nsteps=([cavity40]=160 [cavity80]=80 [cavity160]=40 [cavity320]=20 [taylorGreen6400]=160 [makeRunCavity]=160)
+declare -A nsteps=([cavity40]=160 [cavity80]=80 [cavity160]=40 [cavity320]=20 [taylorGreen6400]=160 [makeRunCavity]=160
+    [buoyantCavity40]=200 [buoyantCavity80]=100)
 for c in $cases; do [ -n "${nsteps[$c]:-}" ] || die "unknown case '$c' (one of: $allcases)"; done
 for s in $stepsopt; do
     case $s in
@@ -110,7 +125,9 @@ case " $cases " in *" taylorGreen6400 "*)
 esac
 [ -x "$umppm" ] || die "no umppmFoam at $umppm"
 umppm=$(cd "$(dirname "$umppm")" && pwd)/$(basename "$umppm")
-for t in icoFoam blockMesh decomposePar mpirun stdbuf; do command -v "$t" >/dev/null || die "$t not on PATH"; done
+apps=icoFoam
+case " $cases " in *" buoyantCavity"[0-9]*) apps="$apps buoyantBoussinesqPimpleFoam" ;; esac
+for t in $apps blockMesh decomposePar mpirun stdbuf; do command -v "$t" >/dev/null || die "$t not on PATH"; done
 mpiflags=""
 [ "$(id -u)" != 0 ] || mpiflags="--allow-run-as-root"
 [ "$(nproc)" -ge 2 ] || mpiflags="$mpiflags --oversubscribe"
@@ -119,14 +136,14 @@ mkdir -p "$work"
 work=$(cd "$work" && pwd)
 [ -z "$out" ] || : > "$out"
 emit() { printf '%s\n' "$1"; [ -z "$out" ] || printf '%s\n' "$1" >> "$out"; }
-fmt="%-15s %-19s %6s %9s %5s %8s %8s %10s %9s %7s %7s %8s %9s"
+fmt="%-15s %-35s %6s %9s %5s %8s %8s %10s %9s %7s %7s %8s %9s"
 
 rev=$(git -C "$top" describe --always --dirty 2>/dev/null || echo unknown)
-emit "# bench/vsOpenFOAM.sh: umppmFoam vs icoFoam, same mesh, same fixed deltaT, fixed steps"
+emit "# bench/vsOpenFOAM.sh: umppmFoam vs icoFoam (buoyant cases: buoyantBoussinesqPimpleFoam), same mesh, same fixed deltaT, fixed steps"
 emit "# date: $(date '+%Y-%m-%d %H:%M:%S %z')  machine: $(uname -m)  CPU: $(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)  nproc: $(nproc)"
-emit "# umppmFoam: $umppm (repo $rev)  icoFoam: $(command -v icoFoam) (OpenFOAM v1912)  mpirun: $(mpirun --version 2>/dev/null | head -1)"
+emit "# umppmFoam: $umppm (repo $rev)  OpenFOAM v1912: $(for a in $apps; do printf '%s ' "$(command -v "$a")"; done) mpirun: $(mpirun --version 2>/dev/null | head -1)"
 emit "# CPU = user+sys of the run's processes (mpirun: sum over ranks); RSS = peak of the largest process (mpirun: max over ranks);"
-emit "# us/pc-st = CPU per particle-step (umppmFoam) or per cell-step (icoFoam); startup = wall to the first 'Time = ' line"
+emit "# us/pc-st = CPU per particle-step (umppmFoam) or per cell-step (the OpenFOAM solver); startup = wall to the first 'Time = ' line"
 emit "# cases in $work"
 emit "$(printf "$fmt" case solver/config cells particles steps wall_s CPU_s us/pc-st startup_s RSS_MiB CPU/PCG CPU/GAMG wall/mpi2)"
 
@@ -203,6 +220,7 @@ for c in $cases; do
     rm -rf "$d"
     mkdir -p "$d/base"
     b=$d/base
+    app=icoFoam
     case $c in
     cavity*)
         n=${c#cavity}
@@ -219,6 +237,18 @@ for c in $cases; do
         dt=$(sed -n 's/^deltaT[[:space:]]*\([^;]*\);.*/\1/p' "$top/tutorials/cavity/system/controlDict")
         base_makeRun "$b"
         what="make run's tutorials/cavity, Re 100, 40x40 quads, UMPPMstar"
+        ;;
+    buoyantCavity*)
+        n=${c#buoyantCavity}
+        app=buoyantBoussinesqPimpleFoam
+        dt=$(awk -v n="$n" 'BEGIN { printf "%.10g", 10 / n }')
+        cp -r "$top/tests/cases/buoyantCavity/0" "$top/tests/cases/buoyantCavity/constant" \
+            "$top/tests/cases/buoyantCavity/system" "$b/"
+        grep -Eq '\( *20 +20 +1 *\)' "$b/system/blockMeshDict" ||
+            die "$top/tests/cases/buoyantCavity/system/blockMeshDict: no block (20 20 1)"
+        sed -i -E "s/\( *20 +20 +1 *\)/($n $n 1)/" "$b/system/blockMeshDict"
+        setEntry "$b/system/controlDict" adjustTimeStep no
+        what="de Vahl Davis cavity Ra 1e4 (tests/cases/buoyantCavity), from rest, ${n}x$n quads"
         ;;
     esac
     endTime=$(awk -v s="$steps" -v d="$dt" 'BEGIN { printf "%.10g", s * d }')
@@ -244,24 +274,24 @@ for c in $cases; do
         us=$(awk -v s="$cpu" -v p="$np" -v k="$steps" 'BEGIN { printf "%.2f", 1e6 * s / (p * k) }')
         rows+=("umppmFoam_omp$t $np $wall $cpu $us $first $rss")
     done
-    # icoFoam serial, the case's PCG
+    # the OpenFOAM solver serial, the case's PCG
     newrun ico-PCG
-    measure "$c ico-PCG" "$d/ico-PCG" "$steps" icoFoam
+    measure "$c ico-PCG" "$d/ico-PCG" "$steps" "$app"
     us=$(awk -v s="$cpu" -v p="$cells" -v k="$steps" 'BEGIN { printf "%.2f", 1e6 * s / (p * k) }')
-    rows+=("icoFoam_PCG - $wall $cpu $us $first $rss")
+    rows+=("${app}_PCG - $wall $cpu $us $first $rss")
     pcg=$cpu
-    # icoFoam serial, GAMG for p and pFinal, the PCG's tolerances
+    # the same, GAMG for p (p_rgh) and its Final, the PCG's tolerances
     newrun ico-GAMG
     f=$d/ico-GAMG/system/fvSolution
     sed -i -E 's/(solver[[:space:]]+)PCG;/\1GAMG;/; s/preconditioner([[:space:]]+)DIC;/smoother\1GaussSeidel;/' "$f"
     { grep -q GAMG "$f" && ! grep -Eq 'PCG|DIC' "$f"; } || die "could not switch p to GAMG in $f"
     foamDictionary -expand -entry solvers "$f" > "$d/ico-GAMG/log.solvers" 2>&1 || true
-    measure "$c ico-GAMG" "$d/ico-GAMG" "$steps" icoFoam
+    measure "$c ico-GAMG" "$d/ico-GAMG" "$steps" "$app"
     grep -q 'GAMG:  Solving for p' "$d/ico-GAMG/log" || die "$c ico-GAMG: no GAMG solve of p in $d/ico-GAMG/log"
     us=$(awk -v s="$cpu" -v p="$cells" -v k="$steps" 'BEGIN { printf "%.2f", 1e6 * s / (p * k) }')
-    rows+=("icoFoam_GAMG - $wall $cpu $us $first $rss")
+    rows+=("${app}_GAMG - $wall $cpu $us $first $rss")
     gamg=$cpu
-    # icoFoam on 2 MPI ranks
+    # the OpenFOAM solver on 2 MPI ranks
     r=ico-mpi2
     newrun "$r"
     cat > "$d/$r/system/decomposeParDict" <<DP
@@ -274,9 +304,9 @@ DP
         die "decomposePar failed: see $d/$r/log.decomposePar"
     fi
     # shellcheck disable=SC2086
-    measure "$c $r" "$d/$r" "$steps" mpirun $mpiflags -np 2 icoFoam -parallel
+    measure "$c $r" "$d/$r" "$steps" mpirun $mpiflags -np 2 "$app" -parallel
     us=$(awk -v s="$cpu" -v p="$cells" -v k="$steps" 'BEGIN { printf "%.2f", 1e6 * s / (p * k) }')
-    rows+=("icoFoam_mpi2_$decompose - $wall $cpu $us $first $rss")
+    rows+=("${app}_mpi2_$decompose - $wall $cpu $us $first $rss")
     mpiwall=$wall
     for row in "${rows[@]}"; do
         read -r cfg np wall cpu us first rss <<< "$row"

@@ -60,6 +60,7 @@ void ppe_free(ppe **pP)
     free(P->fop_off);
     free(P->fop_col);
     free(P->fop_val);
+    free(P->qcoef);
     free(P->ref_row);
     free(P->ref_a);
     free(P);
@@ -269,6 +270,77 @@ static ump_status fix_reference(ppe *P, ump_err *err)
     return UMP_OK;
 }
 
+/* q(x) = a . x + 1/2 x^T H x, x relative to x_f (ppe_face_quadratic_flux) */
+static inline double quad_at(const double a[2], const double H[3], double x, double y)
+{
+    return a[0] * x + a[1] * y + 0.5 * (H[0] * x * x + 2 * H[1] * x * y + H[2] * y * y);
+}
+
+/* grad q_P . o with the LS gradient (Eq. 26) at P = x_f + (px, py):
+ * sum_k g_k . o (q(x_j) - q(x_P)); 0 for a zero offset o */
+static double quadratic_ls_dot(const lsq_grad *g, ump_idx P, double px, double py, const double a[2],
+                               const double H[3], double ox, double oy)
+{
+    if (ox == 0.0 && oy == 0.0)
+        return 0.0;
+    const mesh2d *m = g->m;
+    double qP = quad_at(a, H, px, py), s = 0.0;
+    for (ump_idx k = m->n1_off[P]; k < m->n1_off[P + 1]; k++) {
+        ump_idx j = m->n1[k];
+        double x = px + m->cx[j] + (m->n1_sx ? m->n1_sx[k] : 0.0) - m->cx[P];
+        double y = py + m->cy[j] + (m->n1_sy ? m->n1_sy[k] : 0.0) - m->cy[P];
+        s += (g->wx[k] * ox + g->wy[k] * oy) * (quad_at(a, H, x, y) - qP);
+    }
+    return s;
+}
+
+static double face_quadratic_flux(const ppe *P, ump_idx f, const double a[2], const double H[3])
+{
+    const mesh2d *m = P->m;
+    if (f >= m->ninternal && !P->dirichlet[f])
+        return 0.0;
+    ump_idx A = m->owner[f];
+    double aox, aoy;
+    double dA = foot_offset(m, f, m->cx[A], m->cy[A], &aox, &aoy);
+    double ax = m->cx[A] - m->fx[f], ay = m->cy[A] - m->fy[f]; /* x_A - x_f */
+    /* - q_A - grad q_A . AA' (q_f = 0 at the face) */
+    double s = -quad_at(a, H, ax, ay) - quadratic_ls_dot(P->g, A, ax, ay, a, H, aox, aoy);
+    if (f >= m->ninternal) /* Dirichlet: c (q_f - q_A - grad q_A . AA') */
+        return P->bd_coef[f] * s;
+    /* Eq. 25: c [q_B - q_A + grad q_B . BB' - grad q_A . AA'], B seen from
+     * A as build_face_operator */
+    ump_idx B = m->neigh[f];
+    double bx = m->cx[B] - (m->sepx ? m->sepx[f] : 0.0), by = m->cy[B] - (m->sepy ? m->sepy[f] : 0.0);
+    double box, boy;
+    double dB = foot_offset(m, f, bx, by, &box, &boy);
+    double qx = bx - m->fx[f], qy = by - m->fy[f]; /* x_B - x_f */
+    s += quad_at(a, H, qx, qy) + quadratic_ls_dot(P->g, B, qx, qy, a, H, box, boy);
+    return m->len[f] / (dA - dB) * s;
+}
+
+/* The flux of q is linear in (a, H): store it for the five monomials x, y,
+ * x^2/2, xy, y^2/2 about x_f once (mesh-only), so the step's flux is a dot
+ * product (ppe_face_quadratic_flux) */
+static ump_status build_quadratic_coefficients(ppe *P, ump_err *err)
+{
+    const mesh2d *m = P->m;
+    ALLOC(P->qcoef, 5 * (size_t)m->nfaces);
+    UMP_CHECK(P->qcoef, err, UMP_ERR_NOMEM, "%s: out of memory for the quadratic face fluxes",
+              mesh_name(m));
+    static const double mono[5][5] = {{1, 0, 0, 0, 0}, {0, 1, 0, 0, 0}, {0, 0, 1, 0, 0},
+                                      {0, 0, 0, 1, 0}, {0, 0, 0, 0, 1}};
+    for (ump_idx f = 0; f < m->nfaces; f++)
+        for (int i = 0; i < 5; i++)
+            P->qcoef[5 * (size_t)f + i] = face_quadratic_flux(P, f, mono[i], mono[i] + 2);
+    return UMP_OK;
+}
+
+double ppe_face_quadratic_flux(const ppe *P, ump_idx f, const double a[2], const double H[3])
+{
+    const double *c = P->qcoef + 5 * (size_t)f;
+    return c[0] * a[0] + c[1] * a[1] + c[2] * H[0] + c[3] * H[1] + c[4] * H[2];
+}
+
 ump_status ppe_create(const mesh2d *m, const lsq_grad *g, const unsigned char *dirichlet,
                       const ppe_opts *o, ppe **out, ump_err *err)
 {
@@ -313,7 +385,8 @@ ump_status ppe_create(const mesh2d *m, const lsq_grad *g, const unsigned char *d
         rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s: pRefValue is not finite", mesh_name(m));
         goto fail;
     }
-    if ((rc = build_face_operator(P, err)) != UMP_OK || (rc = assemble(P, err)) != UMP_OK)
+    if ((rc = build_face_operator(P, err)) != UMP_OK || (rc = assemble(P, err)) != UMP_OK ||
+        (rc = build_quadratic_coefficients(P, err)) != UMP_OK)
         goto fail;
     if (!P->has_dirichlet && (rc = fix_reference(P, err)) != UMP_OK)
         goto fail;
@@ -401,54 +474,6 @@ ump_status ppe_solve(ppe *P, const double *flux, double dt, const double *pf, do
     UMP_CALL(residual(P, b, p, &P->res0, err));
     UMP_CALL(lsolve_solve(P->fac, b, p, err));
     return residual(P, b, p, &P->res, err);
-}
-
-/* q(x) = a . x + 1/2 x^T H x, x relative to x_f (ppe_face_quadratic_flux) */
-static inline double quad_at(const double a[2], const double H[3], double x, double y)
-{
-    return a[0] * x + a[1] * y + 0.5 * (H[0] * x * x + 2 * H[1] * x * y + H[2] * y * y);
-}
-
-/* grad q_P . o with the LS gradient (Eq. 26) at P = x_f + (px, py):
- * sum_k g_k . o (q(x_j) - q(x_P)); 0 for a zero offset o */
-static double quadratic_ls_dot(const lsq_grad *g, ump_idx P, double px, double py, const double a[2],
-                               const double H[3], double ox, double oy)
-{
-    if (ox == 0.0 && oy == 0.0)
-        return 0.0;
-    const mesh2d *m = g->m;
-    double qP = quad_at(a, H, px, py), s = 0.0;
-    for (ump_idx k = m->n1_off[P]; k < m->n1_off[P + 1]; k++) {
-        ump_idx j = m->n1[k];
-        double x = px + m->cx[j] + (m->n1_sx ? m->n1_sx[k] : 0.0) - m->cx[P];
-        double y = py + m->cy[j] + (m->n1_sy ? m->n1_sy[k] : 0.0) - m->cy[P];
-        s += (g->wx[k] * ox + g->wy[k] * oy) * (quad_at(a, H, x, y) - qP);
-    }
-    return s;
-}
-
-double ppe_face_quadratic_flux(const ppe *P, ump_idx f, const double a[2], const double H[3])
-{
-    const mesh2d *m = P->m;
-    if (f >= m->ninternal && !P->dirichlet[f])
-        return 0.0;
-    ump_idx A = m->owner[f];
-    double aox, aoy;
-    double dA = foot_offset(m, f, m->cx[A], m->cy[A], &aox, &aoy);
-    double ax = m->cx[A] - m->fx[f], ay = m->cy[A] - m->fy[f]; /* x_A - x_f */
-    /* - q_A - grad q_A . AA' (q_f = 0 at the face) */
-    double s = -quad_at(a, H, ax, ay) - quadratic_ls_dot(P->g, A, ax, ay, a, H, aox, aoy);
-    if (f >= m->ninternal) /* Dirichlet: c (q_f - q_A - grad q_A . AA') */
-        return P->bd_coef[f] * s;
-    /* Eq. 25: c [q_B - q_A + grad q_B . BB' - grad q_A . AA'], B seen from
-     * A as build_face_operator */
-    ump_idx B = m->neigh[f];
-    double bx = m->cx[B] - (m->sepx ? m->sepx[f] : 0.0), by = m->cy[B] - (m->sepy ? m->sepy[f] : 0.0);
-    double box, boy;
-    double dB = foot_offset(m, f, bx, by, &box, &boy);
-    double qx = bx - m->fx[f], qy = by - m->fy[f]; /* x_B - x_f */
-    s += quad_at(a, H, qx, qy) + quadratic_ls_dot(P->g, B, qx, qy, a, H, box, boy);
-    return m->len[f] / (dA - dB) * s;
 }
 
 void ppe_face_gradient_flux(const ppe *P, const double *p, const double *pf, double *gflux)

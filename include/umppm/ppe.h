@@ -59,6 +59,9 @@ typedef struct ppe {
     ump_idx *fop_off;         /* [nfaces+1] */
     ump_idx *fop_col;         /* [fop_off[nfaces]] cells */
     double *fop_val;          /* [fop_off[nfaces]] */
+    /* [5 nfaces] ppe_face_quadratic_flux of x, y, x^2/2, xy, y^2/2 about
+     * x_f: the face's flux of any quadratic is their combination */
+    double *qcoef;
     /* Reference cell (no Dirichlet face): its row becomes ref_diag p = ref_diag
      * pRefValue and its column is moved to the right-hand side, which keeps a
      * symmetric matrix symmetric (CHOLMOD on orthogonal meshes). */
@@ -96,6 +99,7 @@ void ppe_face_gradient_flux(const ppe *P, const double *p, const double *pf, dou
  * field q, so fluxes made of it are solved exactly by a global quadratic
  * with that gradient and Hessian (the balanced buoyancy, docs/METHOD.md
  * section 8). Dirichlet faces: their rule applied to q with q(x_f) = 0;
- * 0 on the other boundary faces. */
+ * 0 on the other boundary faces. Five products: the monomials' fluxes are
+ * stored by ppe_create. */
 double ppe_face_quadratic_flux(const ppe *P, ump_idx f, const double a[2], const double H[3]);
 #endif

@@ -9,7 +9,8 @@
  *   (c) the same on periodic (cyclic) squares;
  *   (d) one factorization, many solves: results equal fresh solves, and no
  *       allocation inside ppe_solve;
- *   (e) refusals.
+ *   (e) refusals;
+ *   (f) ppe_face_quadratic_flux: the face operator's flux of a quadratic.
  */
 #include "testmesh.h"
 #include "umppm/ppe.h"
@@ -335,6 +336,56 @@ static void test_mixed_continuity(void **state)
     free(p);
 }
 
+/* (f) ppe_face_quadratic_flux(f, grad Q(x_f), H) is the flux that
+ * ppe_face_gradient_flux gives for the cell field Q (and Q's face values on
+ * Dirichlet faces) of a global quadratic Q, on every face of a distorted
+ * hybrid mesh with fixed pressure left and right: the stored monomial
+ * fluxes reproduce Eq. 25's expanded rows */
+static void test_quadratic_flux(void **state)
+{
+    (void)state;
+    pmesh *pm = NULL;
+    mesh2d *m = tm_mesh(TM_HYBRID, 16, 0.05, 0, &pm);
+    lsq_grad *g = make_lsq(m);
+    size_t nf = (size_t)m->nfaces, nc = (size_t)m->ncells;
+    unsigned char *dir = calloc(nf, 1);
+    double *q = malloc(sizeof(double) * nc), *pf = malloc(sizeof(double) * nf),
+           *gf = malloc(sizeof(double) * nf);
+    const double a0[2] = {0.8, -1.7}, H[3] = {3.1, 0.9, -2.2};
+#define Q(x, y) (0.4 + a0[0] * (x) + a0[1] * (y) + 0.5 * (H[0] * (x) * (x) + 2 * H[1] * (x) * (y) + H[2] * (y) * (y)))
+    for (ump_idx f = m->ninternal; f < m->nfaces; f++)
+        dir[f] = m->face_patch[f] == 1 || m->face_patch[f] == 3;
+    for (size_t c = 0; c < nc; c++)
+        q[c] = Q(m->cx[c], m->cy[c]);
+    for (size_t f = 0; f < nf; f++)
+        pf[f] = Q(m->fx[f], m->fy[f]);
+#undef Q
+    ppe *P = make_ppe(m, g, dir, LSOLVE_AUTO, 0, 0);
+    ppe_face_gradient_flux(P, q, pf, gf);
+    double e = 0, scale = 0;
+    int ndir = 0;
+    for (ump_idx f = 0; f < m->nfaces; f++) {
+        double x = m->fx[f], y = m->fy[f];
+        double a[2] = {a0[0] + H[0] * x + H[1] * y, a0[1] + H[1] * x + H[2] * y};
+        double s = ppe_face_quadratic_flux(P, f, a, H);
+        e = fmax(e, fabs(s - gf[f]));
+        scale = fmax(scale, fabs(gf[f]));
+        ndir += f >= m->ninternal && dir[f];
+    }
+    printf("    quadratic face fluxes, %s (%d faces, %d Dirichlet): max difference %.2e of %.2e\n",
+           tm_name(TM_HYBRID, 0.05), (int)nf, ndir, e, scale);
+    assert_true(ndir > 0);
+    assert_true(e < 1e-12 * scale);
+    ppe_free(&P);
+    lsq_free(&g);
+    mesh_free(&m);
+    pmesh_free(&pm);
+    free(dir);
+    free(q);
+    free(pf);
+    free(gf);
+}
+
 /* (d) factorize once, solve many times */
 static void test_reuse(void **state)
 {
@@ -513,6 +564,7 @@ int main(void)
         cmocka_unit_test(test_iterative_agrees),
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_out_of_memory),
+        cmocka_unit_test(test_quadratic_flux),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
