@@ -372,8 +372,8 @@ static void stage_mark(stage_clock *c, sol_stats *st, int stage)
 }
 
 static const char *const STAGE_NAMES[SOL_NSTAGES] = {
-    "boundary particles", "interpolation error: MLS u^n faces", "predictor rows (Step 6)", "predictor solve (Step 6)",
-    "move r* (Step 7)", "MLS u* faces/centroids (Step 8)", "PPE (Step 9)",
+    "boundary particles", "buoyancy balance, path kick", "interpolation error: MLS u^n faces",
+    "predictor rows (Step 6)", "predictor solve (Step 6)", "move r* (Step 7)", "MLS u* faces/centroids (Step 8)", "PPE (Step 9)",
     "correct and move (Step 10)", "management (Step 11)", "continuity, Courant"};
 
 const char *sol_stage_name(int stage)
@@ -2916,11 +2916,12 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     stage_mark(&clk, NULL, -1);
     UMP_CALL(grow_particle_work(st, st->P->n, err));
     set_boundary_particles(su, st);
+    stage_mark(&clk, stats, SOL_STAGE_BOUNDARY);
     if (su->set.buoyant && su->set.balanced)
         UMP_CALL(balance_buoyancy(S, dt, stats, err));
     if (su->set.p_theta > 0)
         path_pressure_kick(S, stats);
-    stage_mark(&clk, stats, SOL_STAGE_BOUNDARY);
+    stage_mark(&clk, stats, SOL_STAGE_BALANCE);
     /* q: for the pressure written, and with walls_zero_gradient for the
      * correction (transpose_q) at every step */
     int split = (st->want_p || walls_zero_gradient(su)) && st->have_flux;

@@ -111,7 +111,7 @@ void sol_default_settings(sol_settings *s);
 
 /* Stages of a step, timed separately (sol_stats.stage_cpu/stage_wall). */
 enum {
-    SOL_STAGE_BOUNDARY, SOL_STAGE_PWRITE, SOL_STAGE_ROWS, SOL_STAGE_SOLVE, SOL_STAGE_MOVE, SOL_STAGE_MLS,
+    SOL_STAGE_BOUNDARY, SOL_STAGE_BALANCE, SOL_STAGE_PWRITE, SOL_STAGE_ROWS, SOL_STAGE_SOLVE, SOL_STAGE_MOVE, SOL_STAGE_MLS,
     SOL_STAGE_PPE, SOL_STAGE_CORRECT, SOL_STAGE_MANAGE, SOL_STAGE_DIAG, SOL_NSTAGES
 };
 /* Name of a stage for logs ("predictor rows (Step 6)", ...). */
