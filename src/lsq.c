@@ -40,7 +40,6 @@ void lsq_free(lsq_grad **pg)
         return;
     free((*pg)->wx);
     free((*pg)->wy);
-    free((*pg)->hm);
     free(*pg);
     *pg = NULL;
 }
@@ -65,8 +64,7 @@ ump_status lsq_build_walls(const mesh2d *m, int weighted, const unsigned char *w
     g->m = m;
     g->wx = ump_alloc_array(nst, sizeof *g->wx);
     g->wy = ump_alloc_array(nst, sizeof *g->wy);
-    g->hm = ump_alloc_array(6 * (size_t)m->ncells, sizeof *g->hm);
-    if (!g->wx || !g->wy || !g->hm) {
+    if (!g->wx || !g->wy) {
         lsq_free(&g);
         return UMP_FAIL(err, UMP_ERR_NOMEM, "lsq: out of memory for %zu stencil weights", nst);
     }
@@ -125,18 +123,6 @@ ump_status lsq_build_walls(const mesh2d *m, int weighted, const unsigned char *w
             g->wx[k] = w * (ixx * dx + ixy * dy) / h;
             g->wy[k] = w * (ixy * dx + iyy * dy) / h;
         }
-        /* the curvature moments sum_k g_k (1/2 d_k d_k^T), physical units
-         * (lsq_gradient_curved) */
-        double *hm = g->hm + 6 * (size_t)c;
-        for (int i = 0; i < 6; i++)
-            hm[i] = 0.0;
-        for (ump_idx k = m->n1_off[c]; k < m->n1_off[c + 1]; k++) {
-            double dx = m->cx[m->n1[k]] + (m->n1_sx ? m->n1_sx[k] : 0.0) - m->cx[c];
-            double dy = m->cy[m->n1[k]] + (m->n1_sy ? m->n1_sy[k] : 0.0) - m->cy[c];
-            double qxx = 0.5 * dx * dx, qxy = dx * dy, qyy = 0.5 * dy * dy;
-            hm[0] += g->wx[k] * qxx, hm[1] += g->wx[k] * qxy, hm[2] += g->wx[k] * qyy;
-            hm[3] += g->wy[k] * qxx, hm[4] += g->wy[k] * qxy, hm[5] += g->wy[k] * qyy;
-        }
     }
     *out = g;
     return UMP_OK;
@@ -155,19 +141,5 @@ void lsq_gradient(const lsq_grad *g, const double *restrict phi, double *restric
         }
         gx[c] = sx;
         gy[c] = sy;
-    }
-}
-
-void lsq_gradient_curved(const lsq_grad *g, const double *restrict phi, const double *restrict hxx,
-                         const double *restrict hxy, const double *restrict hyy, double *restrict gx,
-                         double *restrict gy)
-{
-    lsq_gradient(g, phi, gx, gy);
-    /* sum_k g_k (phi_j - phi_P) less sum_k g_k (1/2 d_k^T H_P d_k): the
-     * second sum is H_P's three entries against the stored moments */
-    for (ump_idx c = 0; c < g->m->ncells; c++) {
-        const double *hm = g->hm + 6 * (size_t)c;
-        gx[c] -= hm[0] * hxx[c] + hm[1] * hxy[c] + hm[2] * hyy[c];
-        gy[c] -= hm[3] * hxx[c] + hm[4] * hxy[c] + hm[5] * hyy[c];
     }
 }

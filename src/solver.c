@@ -143,6 +143,9 @@ typedef struct sol_setup {
     unsigned char *t_kind;     /* buoyant: temperature condition per boundary face */
     double *tb;
     double *ghc, *ghf;         /* buoyant: gh at cells and faces */
+    double *rinv;              /* buoyant: [3 ncells] (sum_f n_f n_f^T |A_f|)^-1 of
+                                  each cell (xx, xy, yy), the reconstruction of a
+                                  vector from its face fluxes (balance_buoyancy) */
     /* particle stencil of each cell: {c} u N2(c) in increasing cell order,
      * with the cyclic shift of each entry */
     ump_idx *st_off, *st_cell;
@@ -209,6 +212,11 @@ typedef struct sol_work {
         double *off[PART_DIM];
     };
     ump_idx *sref;             /* refs of the samples in h, k order */
+    /* image_row: the samples with their images across zero-gradient
+     * planes (offsets, coefficients, scratch, source sample), room icap */
+    size_t icap;
+    double *ih, *ik, *ia;
+    int *isrc;
     double *c0, *cx, *cy;      /* MLS / Laplacian coefficients */
     double *pv;                /* stencil values (pressure gradient) */
     double *gv[SOL_MAX_VALUES]; /* gathered sample values (gather_values) */
@@ -237,6 +245,8 @@ typedef struct sol_state {
                                   values, zero [nfaces] (step_face_pressure) */
     double *hxx, *hxy, *hyy;   /* buoyant: the buoyancy's gradient -beta sym(g grad T_P)
                                   [ncells], pi_b's Hessian (balance_buoyancy) */
+    double *rbx, *rby;         /* buoyant: [ncells] what pi_b leaves of the buoyancy,
+                                  reconstructed from its face residuals (balance_buoyancy) */
     /* boundary values of this step per boundary face b = f - ninternal */
     double *ub, *vb;           /* prescribed velocity (fixed faces), inletValue,
                                   outletValue, or the tangential inflow velocity
@@ -386,7 +396,7 @@ const char *sol_stage_name(int stage)
 static void work_free(sol_work *w)
 {
     void *arr[] = {w->px, w->py, w->ref, w->h, w->k, w->sref, w->c0, w->cx, w->cy, w->pv, w->gv[0], w->gv[1],
-                   w->gv[2]};
+                   w->gv[2], w->ih, w->ik, w->ia, w->isrc};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
     memset(w, 0, sizeof *w);
@@ -411,7 +421,7 @@ void sol_free(sol **pS)
         free(su->timed[k].val);
     }
     free(su->timed);
-    void *arr[] = {su->u_kind, st->ub, st->vb, su->p_dir, su->p_total, su->p0, st->prgh_f, su->t_kind, su->tb, su->ghc, su->ghf,
+    void *arr[] = {su->u_kind, st->ub, st->vb, su->p_dir, su->p_total, su->p0, st->prgh_f, su->t_kind, su->tb, su->ghc, su->ghf, su->rinv, st->rbx, st->rby,
                    su->st_off, su->st_cell, su->st_sx, su->st_sy, su->ru_off, su->ru_q0, su->ru_q1,
                    su->ru_sx, su->ru_sy, su->st_bnd, su->of_off, su->of_face, st->p, st->pold, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
@@ -1219,7 +1229,8 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
             rc = UMP_FAIL(err, UMP_ERR_INPUT, "solver: a buoyant case needs the temperature field T");
             goto fail;
         }
-        double **carr[] = {&st->Tc, &st->gtx, &st->gty, &su->ghc, &st->pib, &st->hxx, &st->hxy, &st->hyy};
+        double **carr[] = {&st->Tc, &st->gtx, &st->gty, &su->ghc, &st->pib, &st->hxx, &st->hxy, &st->hyy,
+                           &st->rbx, &st->rby};
         for (size_t i = 0; i < sizeof carr / sizeof carr[0]; i++)
             if (!(*carr[i] = ump_alloc_array((size_t)nc, sizeof(double))))
                 goto nomem;
@@ -1228,8 +1239,25 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
             !(st->fluxb = ump_alloc_array((size_t)nf, sizeof(double))) ||
             !(st->pf0 = ump_alloc_array((size_t)nf, sizeof(double))) ||
             !(su->t_kind = ump_alloc_array((size_t)nb, 1)) || !(st->tneu = ump_alloc_array((size_t)nb, 1)) ||
-            !(su->tb = ump_alloc_array((size_t)nb, sizeof(double))))
+            !(su->tb = ump_alloc_array((size_t)nb, sizeof(double))) ||
+            !(su->rinv = ump_alloc_array(3 * (size_t)nc, sizeof(double))))
             goto nomem;
+        /* the reconstruction of a cell vector from its face fluxes
+         * (OpenFOAM's fvc::reconstruct): v = (sum_f n n^T |A_f|)^-1
+         * sum_f n (v . n |A_f|), exact for a uniform v; mesh-only */
+        for (ump_idx c = 0; c < nc; c++) {
+            double axx = 0, axy = 0, ayy = 0;
+            for (ump_idx k = m->cell_face_off[c]; k < m->cell_face_off[c + 1]; k++) {
+                ump_idx f = m->cell_faces[k];
+                axx += m->nx[f] * m->nx[f] * m->len[f];
+                axy += m->nx[f] * m->ny[f] * m->len[f];
+                ayy += m->ny[f] * m->ny[f] * m->len[f];
+            }
+            double det = axx * ayy - axy * axy;
+            su->rinv[3 * (size_t)c] = ayy / det;
+            su->rinv[3 * (size_t)c + 1] = -axy / det;
+            su->rinv[3 * (size_t)c + 2] = axx / det;
+        }
         /* gh = g . x - ghRef with the 3-D cell and face centres (gh.H) */
         double X[3];
         for (ump_idx c = 0; c < nc; c++) {
@@ -1412,7 +1440,7 @@ static inline double mls_extent(const sol_setup *su, double e)
  * st->gx, st->gy. Returns the count of fits that fell back from the
  * quadratic basis. */
 static long particle_pressure_gradient(sol *S, const double *p, const double *pfv, double *gxo, double *gyo,
-                                       int walls, int curved)
+                                       int walls)
 {
     const sol_setup *su = &S->su;
     const mesh2d *m = su->m;
@@ -1421,9 +1449,7 @@ static long particle_pressure_gradient(sol *S, const double *p, const double *pf
     long fb = 0;
     int aniso = su->set.anisotropic;
     double *cgx = S->st.gx, *cgy = S->st.gy;
-    if (aniso && curved)
-        lsq_gradient_curved(su->g, p, S->st.hxx, S->st.hxy, S->st.hyy, cgx, cgy);
-    else if (aniso)
+    if (aniso)
         lsq_gradient(su->g, p, cgx, cgy);
 #pragma omp parallel num_threads(S->nthreads) reduction(+ : fb)
     {
@@ -1476,6 +1502,48 @@ static long particle_pressure_gradient(sol *S, const double *p, const double *pf
             }
             gxo[i] = gx;
             gyo[i] = gy;
+        }
+    }
+    return fb;
+}
+
+/* scale times the MLS value fit (Eq. 32) at the particles of the cell
+ * vectors (vx, vy) [ncells] over the centroids of each particle's cell
+ * stencil (as particle_pressure_gradient's fit of cell gradients) into
+ * ox, oy [particles]. Returns the count of fits that fell back from the
+ * quadratic basis. */
+static long particle_cell_vector(sol *S, const double *vx, const double *vy, double *ox, double *oy, double scale)
+{
+    const sol_setup *su = &S->su;
+    const mesh2d *m = su->m;
+    const part_set *P = S->st.P;
+    size_t n = P->n;
+    long fb = 0;
+#pragma omp parallel num_threads(S->nthreads) reduction(+ : fb)
+    {
+        sol_work *w = &S->work[thread_id()];
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            ump_idx c = P->cell[i];
+            int nn = 0;
+            for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
+                ump_idx q = su->st_cell[a];
+                double sx = su->st_sx ? su->st_sx[a] : 0, sy = su->st_sy ? su->st_sy[a] : 0;
+                w->h[nn] = m->cx[q] + sx - P->x[i];
+                w->k[nn] = m->cy[q] + sy - P->y[i];
+                w->pv[nn] = vx[q];
+                w->cy[nn++] = vy[q];
+            }
+            double ex = mls_extent(su, m->dx[c]), ey = mls_extent(su, m->dy[c]);
+            if (mls_weights(w->h, w->k, nn, ex, ey, w->c0, NULL, NULL, NULL) != MLS_QUADRATIC)
+                fb++;
+            double sx = 0, sy = 0;
+            for (int j = 0; j < nn; j++) {
+                sx += w->c0[j] * w->pv[j];
+                sy += w->c0[j] * w->cy[j];
+            }
+            ox[i] = scale * sx;
+            oy[i] = scale * sy;
         }
     }
     return fb;
@@ -1586,6 +1654,124 @@ static ump_status laplacian_row(sol_work *w, const lap_params *lp, int *neu, con
         return UMP_OK;
     w->lap_fallbacks++;
     return lap_coeffs(&mps, w->h, w->k, nn, l0, a, e);
+}
+
+/* Zero-gradient boundaries by images (docs/METHOD.md section 8,
+ * "Zero-gradient boundaries in the Laplacian"): the row of the samples
+ * [nn] (offsets w->h, w->k) whose zero-gradient ones (normal nx, ny != 0)
+ * lie on at most two planes is CPM's row over the other samples, the
+ * particle itself (offset 0) and their mirror images across those planes
+ * (and across both, at a corner of two), each image carrying its source's
+ * value: the even extension of a field with zero normal gradient, exact
+ * for its quadratics. An image farther (in the metric sx, sy) than the
+ * farthest sample is left out, so next to a plane wall of a lattice the
+ * row is the interior row, and a field of the wall-parallel coordinate
+ * alone stays one (a stratification beside adiabatic walls: the CPM fit
+ * with d/dn = 0 rows, lap_cpm_neumann, differed from the interior row in
+ * its higher moments, and T varied along the wall by 1e-4 in the first
+ * seconds; README, "Zero-gradient walls by images"). positiveRows applies
+ * to the extended row (dmax as positive_row). The images' coefficients
+ * are summed into their sources' a [nn]; the zero-gradient samples get 0
+ * and the particle's own images drop out of sum_j a_j (phi_j - phi_i).
+ * Returns 1 with the row made (*made: positiveRows changed it), 0 where
+ * images do not apply (more than two planes, a sample beyond a plane, no
+ * room, or the fit failed): the caller then takes lap_cpm_neumann. */
+static int image_row(sol_work *w, const lap_params *lp, const double *nx, const double *ny, int nn, double l0,
+                     double ex, double ey, double sx, double sy, double *a)
+{
+    /* the planes: normal (outward) and n . x of a point, offsets from the particle */
+    double pn[2][2], pd[2];
+    int np = 0;
+    double tol = 1e-9 * l0;
+    for (int j = 0; j < nn; j++) {
+        if (nx[j] == 0 && ny[j] == 0)
+            continue;
+        double d = nx[j] * w->h[j] + ny[j] * w->k[j];
+        int q = 0;
+        while (q < np && !(pn[q][0] * nx[j] + pn[q][1] * ny[j] > 1 - 1e-12 && fabs(pd[q] - d) <= tol))
+            q++;
+        if (q == np) {
+            if (np == 2)
+                return 0;
+            pn[np][0] = nx[j], pn[np][1] = ny[j], pd[np++] = d;
+        }
+    }
+    /* the samples kept, every one on the inner side of each plane, and
+     * their reach along each plane's normal from the particle */
+    double reach[2] = {0, 0};
+    int nk = 0;
+    for (int j = 0; j < nn; j++) {
+        if (nx[j] != 0 || ny[j] != 0)
+            continue;
+        for (int q = 0; q < np; q++) {
+            double d = pn[q][0] * w->h[j] + pn[q][1] * w->k[j];
+            if (d > pd[q] + tol)
+                return 0;
+            reach[q] = fmax(reach[q], fabs(d));
+        }
+        nk++;
+    }
+    size_t need = (size_t)(nk + 1) * (np == 2 ? 4 : 2);
+    if (need > w->icap) {
+        size_t c = need + need / 2 + 64;
+        double **d[] = {&w->ih, &w->ik, &w->ia};
+        for (size_t i = 0; i < sizeof d / sizeof d[0]; i++) {
+            double *q = ump_realloc_array(*d[i], c, sizeof(double));
+            if (!q)
+                return 0;
+            *d[i] = q;
+        }
+        int *q = ump_realloc_array(w->isrc, c, sizeof(int));
+        if (!q)
+            return 0;
+        w->isrc = q;
+        w->icap = c;
+    }
+    /* sources (-1: the particle itself), then their images: across each
+     * plane, and at a corner across both */
+    int ne = 0;
+    for (int j = -1; j < nn; j++) {
+        if (j >= 0 && (nx[j] != 0 || ny[j] != 0))
+            continue;
+        w->ih[ne] = j < 0 ? 0 : w->h[j];
+        w->ik[ne] = j < 0 ? 0 : w->k[j];
+        w->isrc[ne++] = j;
+    }
+    int nsrc = ne;
+    for (int m = 1; m < (np == 2 ? 4 : 2); m++) /* m: a bit per plane crossed */
+        for (int e = 0; e < nsrc; e++) {
+            double x = w->ih[e], y = w->ik[e];
+            for (int q = 0; q < np; q++) {
+                if (!(m & (1 << q)))
+                    continue;
+                double t = 2 * (pn[q][0] * x + pn[q][1] * y - pd[q]);
+                x -= t * pn[q][0];
+                y -= t * pn[q][1];
+            }
+            /* a quarter of the cell's extent along the normal spare, so a
+             * lattice's row does not change as its particles jitter */
+            int in = 1;
+            for (int q = 0; q < np; q++)
+                in &= fabs(pn[q][0] * x + pn[q][1] * y) <=
+                      reach[q] + 0.25 * (fabs(pn[q][0]) * ex + fabs(pn[q][1]) * ey);
+            if (!in)
+                continue;
+            w->ih[ne] = x, w->ik[ne] = y;
+            w->isrc[ne++] = w->isrc[e];
+        }
+    /* the particle itself is not a sample of the row: its images are */
+    int off = 1;
+    ump_err e;
+    if (lap_coeffs_metric(lp, w->ih + off, w->ik + off, ne - off, l0, sx, sy, w->ia, &e) != UMP_OK)
+        return 0;
+    for (int j = 0; j < nn; j++)
+        a[j] = 0;
+    for (int e2 = 0; e2 < ne - off; e2++) {
+        int src = w->isrc[e2 + off];
+        if (src >= 0)
+            a[src] += w->ia[e2];
+    }
+    return 1;
 }
 
 /* Insertion sort of one row by column (only when particles are not sorted
@@ -1730,15 +1916,21 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                     differ |= fu != ft;
                 }
             }
-            if ((rc = laplacian_row(w, lp, &anyu, unx, uny, nn, l0, sx, sy, w->c0, &e)) != UMP_OK) {
+            /* the zero-gradient samples by images where they lie on one or
+             * two planes (image_row, positiveRows included), else as
+             * d/dn = 0 rows of the fit */
+            int own = sepT && differ;
+            int imu = anyu && image_row(w, lp, unx, uny, nn, l0, m->dx[c], m->dy[c], sx, sy, w->c0);
+            if (!imu && (rc = laplacian_row(w, lp, &anyu, unx, uny, nn, l0, sx, sy, w->c0, &e)) != UMP_OK) {
                 work_fail(w, rc, &e);
                 continue;
             }
             /* T's row where its zero gradients are not U's: its own */
             double *aT = NULL;
-            if (sepT && differ) {
+            if (own) {
                 aT = w->gv[0];
-                if ((rc = laplacian_row(w, lp, &anyt, tnx, tny, nn, l0, sx, sy, aT, &e)) != UMP_OK) {
+                int imt = anyt && image_row(w, lp, tnx, tny, nn, l0, m->dx[c], m->dy[c], sx, sy, aT);
+                if (!imt && (rc = laplacian_row(w, lp, &anyt, tnx, tny, nn, l0, sx, sy, aT, &e)) != UMP_OK) {
                     work_fail(w, rc, &e);
                     continue;
                 }
@@ -1764,7 +1956,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
              * this row is T's too (dominance at the larger of dt nu, dt
              * kappa). */
             if (set->positive && lp->model == LAP_CPM) {
-                double dmax = aT || dnu > dkap ? dnu : dkap;
+                double dmax = own || dnu > dkap ? dnu : dkap;
                 w->positive_rows += positive_row(set, w, w->c0, anyu ? unx : NULL, anyu ? uny : NULL, nn, sx, sy,
                                                  dmax);
             }
@@ -1819,9 +2011,10 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                 sorted &= ci[dpos + 1] > ci[dpos];
             if (!sorted)
                 sort_row(ci + st->rp[i], av + st->rp[i], sepT ? avT + st->rp[i] : NULL, pos - st->rp[i]);
-            /* Boussinesq source per unit mass, -beta (T^n - TRef) g (Eq. 4) */
-            double b = buoyant ? -set->beta * (P->T[i] - set->t_ref) : 0;
-            /* balanced buoyancy: b - grad pi_b (balance_buoyancy) */
+            /* Boussinesq source per unit mass, -beta (T^n - TRef) g (Eq. 4);
+             * balanced buoyancy: what pi_b leaves of it, -gpx, -gpy
+             * (balance_buoyancy) */
+            double b = buoyant && !bal ? -set->beta * (P->T[i] - set->t_ref) : 0;
             double px = kick ? st->gpx[i] : 0, py = kick ? st->gpy[i] : 0;
             st->rhs_u[i] = P->u[i] + dnu * bu + dt * (b * gx - px);
             st->rhs_v[i] = P->v[i] + dnu * bv + dt * (b * gy - py);
@@ -2014,7 +2207,7 @@ static void path_pressure_kick(sol *S, sol_stats *stats)
     }
     /* us, vs are free until the predictor solve */
     stats->mls_fallbacks +=
-        (int)particle_pressure_gradient(S, st->pold, st->pfprev, st->us, st->vs, walls_zero_gradient(su), 0);
+        (int)particle_pressure_gradient(S, st->pold, st->pfprev, st->us, st->vs, walls_zero_gradient(su));
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (size_t i = 0; i < n; i++) {
         st->gpx[i] = (bal ? st->gpx[i] : 0.0) + th * st->us[i];
@@ -2365,7 +2558,32 @@ static ump_status balance_buoyancy(sol *S, double dt, sol_stats *stats, ump_err 
         for (ump_idx c = 0; c < m->ncells; c++)
             st->pib[c] -= r;
     }
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, st->pib, st->pf, st->gpx, st->gpy, 0, 1);
+    /* What pi_b leaves of the buoyancy at each face, r_f = b_f-flux / dt -
+     * grad pi_b . A_f (Eq. 25, the PPE's own face operator), reconstructed
+     * in the cells: the particles' force. The balance is then exact face by
+     * face where it holds in the PPE (a stratification along g of any
+     * profile on an orthogonal mesh, a linear one on any mesh), not only up
+     * to the difference of a particle's b and an MLS gradient of pi_b: that
+     * difference, one-sided next to a wall, moved a box stratified from T
+     * = 0.5 at 7.6e-5 m/s after 5 s (README, "Stratified rest while T
+     * changes"). Walls (no flux of pi_b's): r_f = 0 */
+    ppe_face_gradient_flux(su->pe, st->pib, st->pf, st->gflux);
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+    for (ump_idx c = 0; c < m->ncells; c++) {
+        double bx = 0, by = 0;
+        for (ump_idx k = m->cell_face_off[c]; k < m->cell_face_off[c + 1]; k++) {
+            ump_idx f = m->cell_faces[k];
+            if (f >= ni && !su->p_dir[f])
+                continue;
+            double r = st->fluxb[f] / dt - st->gflux[f];
+            bx += m->nx[f] * r;
+            by += m->ny[f] * r;
+        }
+        const double *ri = su->rinv + 3 * (size_t)c;
+        st->rbx[c] = ri[0] * bx + ri[1] * by;
+        st->rby[c] = ri[1] * bx + ri[2] * by;
+    }
+    stats->mls_fallbacks += (int)particle_cell_vector(S, st->rbx, st->rby, st->gpx, st->gpy, -1.0);
     return UMP_OK;
 }
 
@@ -2577,7 +2795,7 @@ static ump_status step10_correct(sol *S, double dt, sol_stats *stats, ump_err *e
             st->pd[c] = phi[c] - st->q[c];
         pg = st->pd;
     }
-    stats->mls_fallbacks += (int)particle_pressure_gradient(S, pg, phif, st->gpx, st->gpy, walls, 0);
+    stats->mls_fallbacks += (int)particle_pressure_gradient(S, pg, phif, st->gpx, st->gpy, walls);
     /* walls: the correction damped as the predictor's row would damp it
      * next to a no-slip wall (st->wdamp, step6_rows; docs/METHOD.md section
      * 8, "Walls in the correction" (e)), q's part too */

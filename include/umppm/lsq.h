@@ -20,10 +20,6 @@
 typedef struct lsq_grad {
     const mesh2d *m;   /* borrowed */
     double *wx, *wy;   /* [m->n1_off[ncells]], aligned with m->n1 */
-    /* [6 ncells] per cell P: sum_k g_k (1/2 dx^2, dx dy, 1/2 dy^2), x then y
-     * component, d_k = x_j - x_P: the LS gradient of a pure quadratic, so
-     * lsq_gradient_curved costs three products per component */
-    double *hm;
 } lsq_grad;
 
 /* Fails (UMP_ERR_INPUT) if some M_P is singular (all neighbours collinear). */
@@ -41,13 +37,4 @@ void lsq_free(lsq_grad **g);
 /* gx, gy [ncells] = gradient of phi [ncells] (stride 1). */
 void lsq_gradient(const lsq_grad *g, const double *phi, double *gx, double *gy);
 
-/* The same, exact for quadratics whose Hessian at each cell is known:
- * grad phi_P = sum_k g_k (phi_j - phi_P - 1/2 d_k^T H_P d_k), d_k = x_j - x_P,
- * H_P = {hxx, hxy, hyy}[P] [ncells] (the stored moments hm make the second
- * sum three products). Eq. 26 alone is exact for linear phi
- * only; on stretched stencils its error for a quadratic is of the order of
- * the curvature times the stencil's asymmetry (the balanced buoyancy's
- * hydrostatic pressure, docs/METHOD.md section 8). */
-void lsq_gradient_curved(const lsq_grad *g, const double *phi, const double *hxx, const double *hxy,
-                         const double *hyy, double *gx, double *gy);
 #endif

@@ -3,8 +3,7 @@
  * fields on quad, triangle, hybrid (and distorted) meshes; the cyclic shifts
  * reproduce linear functions across periodic boundaries; observed order for a
  * smooth field under refinement; singular stencils refused; walls as
- * zero-gradient samples (lsq_build_walls); lsq_gradient_curved exact for
- * quadratics of known Hessian.
+ * zero-gradient samples (lsq_build_walls).
  */
 #include "testmesh.h"
 #include "umppm/lsq.h"
@@ -259,57 +258,6 @@ static void test_convergence(void **state)
     }
 }
 
-/* lsq_gradient_curved: a quadratic with its Hessian given per cell has its
- * exact gradient on distorted and hybrid meshes, either weighting; Eq. 26
- * alone misses it by the curvature times the stencil's asymmetry */
-static void test_curved_quadratic(void **state)
-{
-    (void)state;
-    tm_kind kinds[] = {TM_QUAD, TM_TRI, TM_HYBRID};
-    const double H[3] = {2.4, -1.1, 0.7};
-    for (int k = 0; k < 3; k++)
-        for (int weighted = 0; weighted < 2; weighted++) {
-            pmesh *pm = NULL;
-            mesh2d *m = tm_mesh(kinds[k], 12, 0.05, 0, &pm);
-            lsq_grad *g = build_w(m, weighted);
-            size_t nc = (size_t)m->ncells;
-            double *phi = malloc(sizeof(double) * nc), *gx = malloc(sizeof(double) * nc),
-                   *gy = malloc(sizeof(double) * nc), *h[3];
-            for (int i = 0; i < 3; i++)
-                h[i] = malloc(sizeof(double) * nc);
-            for (size_t c = 0; c < nc; c++) {
-                double x = m->cx[c], y = m->cy[c];
-                phi[c] = 0.3 + 1.5 * x - 0.25 * y + 0.5 * (H[0] * x * x + 2 * H[1] * x * y + H[2] * y * y);
-                for (int i = 0; i < 3; i++)
-                    h[i][c] = H[i];
-            }
-            double e[2] = {0, 0};
-            for (int curved = 0; curved < 2; curved++) {
-                if (curved)
-                    lsq_gradient_curved(g, phi, h[0], h[1], h[2], gx, gy);
-                else
-                    lsq_gradient(g, phi, gx, gy);
-                for (size_t c = 0; c < nc; c++) {
-                    double x = m->cx[c], y = m->cy[c];
-                    double ex = 1.5 + H[0] * x + H[1] * y, ey = -0.25 + H[1] * x + H[2] * y;
-                    e[curved] = fmax(e[curved], fmax(fabs(gx[c] - ex), fabs(gy[c] - ey)));
-                }
-            }
-            printf("    quadratic, %s%s: gradient error %.2e (Eq. 26), %.2e (less the curvature)\n",
-                   tm_name(kinds[k], 0.05), weighted ? ", 1/|d|^2" : "", e[0], e[1]);
-            assert_true(e[1] < 1e-11);
-            assert_true(e[0] > 1e-3);
-            for (int i = 0; i < 3; i++)
-                free(h[i]);
-            free(phi);
-            free(gx);
-            free(gy);
-            lsq_free(&g);
-            mesh_free(&m);
-            pmesh_free(&pm);
-        }
-}
-
 /* a one-cell-wide channel: every stencil is on one line */
 static int strip_patch(double x, double y, void *ctx)
 {
@@ -362,7 +310,6 @@ int main(void)
         cmocka_unit_test(test_convergence),
         cmocka_unit_test(test_singular_stencil),
         cmocka_unit_test(test_walls),
-        cmocka_unit_test(test_curved_quadratic),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
