@@ -150,20 +150,22 @@ echo "== 2b. stable stratification while T changes: the transient, stretched cel
 # The same box from T = 0.5 (and from T = 1 - x), Delta t 0.5 s, t = 200 s,
 # written every 2.5 s; max |U| is the largest over all the writes (the
 # conduction transient of the first seconds included). (a) The box itself,
-# and with symmetry instead of its adiabatic walls: <= 1e-8 (8.8e-11
-# and 6.3e-11; buoyantBoussinesqPimpleFoam 6.6e-9; 7.6e-5 at t = 5 s before
-# the image rows and the reconstructed buoyancy of 2026-12-05, README
-# "Stratified rest while T changes"). (b) 20 x 20 cells graded 200:1
+# and with symmetry instead of its adiabatic walls: <= 1e-8 (8.6e-11
+# and 8.8e-11; buoyantBoussinesqPimpleFoam 6.6e-9; 2.5e-4 and 2.6e-4 at
+# t = 2.5 s before the image rows and the reconstructed buoyancy of
+# 2026-12-05, README "Stratified rest while T changes"). (b) 20 x 20 cells graded 200:1
 # toward all four walls: T against the exact 1-D conduction solution at t
 # = 50 s (T must not depend on y: 0.14 while the adiabatic walls' boundary
 # particles were lagged values, 0.003 since, OpenFOAM 0.0025); max |U|
 # 6.7e-5 at t = 7.5 s (9.0e-4 before; buoyantBoussinesqPimpleFoam 5.8e-7):
-# bound 1e-4. (c) T = 1 - x from the start on that mesh: 3.7e-9 (1.8e-4
-# before pi_b's fluxes were Eq. 25 of the hydrostatic quadratic). (d) 688
+# bound 1e-4. (c) T = 1 - x from the start on that mesh: 3.7e-9 (5.7e-9
+# before; 1.8e-4 before pi_b's fluxes were Eq. 25 of the hydrostatic
+# quadratic). (d) 688
 # triangles (stratifiedTriangles.geo), from T = 0.5: 2.3e-5 at t = 2.5 s
 # (1.8e-4 before; OpenFOAM diverges on this mesh): bound 5e-5. (e) The box
 # with its cold wall an opening (p_rgh fixedValue 0, U inletOutlet): 1.4e-10
-# (3.3e-5 at t = 200 s while pi_b was 0 at fixed-pressure faces).
+# (3.1e-4 at t = 2.5 s before; 3.3e-5 at t = 200 s while pi_b was 0 at
+# fixed-pressure faces). The code before (8f5f92e) fails five of these six.
 kappa=$(awk 'BEGIN { printf "%.10g", 1.44552067e-03 / 0.71 }')
 # exact_T CASE TIME: max |T - T_exact| over the cells, T_exact the series
 # solution of T_t = kappa T_xx, T(0) = 1, T(1) = 0, T(x, 0) = 1/2
