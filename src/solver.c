@@ -1749,12 +1749,18 @@ static int image_row(sol_work *w, const lap_params *lp, const double *nx, const 
                 y -= t * pn[q][1];
             }
             /* a quarter of the cell's extent along the normal spare, so a
-             * lattice's row does not change as its particles jitter */
+             * lattice's row does not change as its particles jitter; an
+             * image within a twentieth of it of the particle (the
+             * particle's own, when it has come that close to the plane)
+             * is left out: its weight 1/r^6 would swamp the fit */
             int in = 1;
-            for (int q = 0; q < np; q++)
-                in &= fabs(pn[q][0] * x + pn[q][1] * y) <=
-                      reach[q] + 0.25 * (fabs(pn[q][0]) * ex + fabs(pn[q][1]) * ey);
-            if (!in)
+            double near = 0;
+            for (int q = 0; q < np; q++) {
+                double ext = fabs(pn[q][0]) * ex + fabs(pn[q][1]) * ey;
+                in &= fabs(pn[q][0] * x + pn[q][1] * y) <= reach[q] + 0.25 * ext;
+                near = fmax(near, 0.05 * ext);
+            }
+            if (!in || x * x + y * y < near * near)
                 continue;
             w->ih[ne] = x, w->ik[ne] = y;
             w->isrc[ne++] = w->isrc[e];
