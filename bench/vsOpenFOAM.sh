@@ -136,7 +136,7 @@ mkdir -p "$work"
 work=$(cd "$work" && pwd)
 [ -z "$out" ] || : > "$out"
 emit() { printf '%s\n' "$1"; [ -z "$out" ] || printf '%s\n' "$1" >> "$out"; }
-fmt="%-15s %-35s %6s %9s %5s %8s %8s %10s %9s %7s %7s %8s %9s"
+fmt="%-15s %-40s %6s %9s %5s %8s %8s %10s %9s %7s %7s %8s %9s"
 
 rev=$(git -C "$top" describe --always --dirty 2>/dev/null || echo unknown)
 emit "# bench/vsOpenFOAM.sh: umppmFoam vs icoFoam (buoyant cases: buoyantBoussinesqPimpleFoam), same mesh, same fixed deltaT, fixed steps"

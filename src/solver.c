@@ -1659,23 +1659,26 @@ static ump_status laplacian_row(sol_work *w, const lap_params *lp, int *neu, con
 /* Zero-gradient boundaries by images (docs/METHOD.md section 8,
  * "Zero-gradient boundaries in the Laplacian"): the row of the samples
  * [nn] (offsets w->h, w->k) whose zero-gradient ones (normal nx, ny != 0)
- * lie on at most two planes is CPM's row over the other samples, the
- * particle itself (offset 0) and their mirror images across those planes
- * (and across both, at a corner of two), each image carrying its source's
- * value: the even extension of a field with zero normal gradient, exact
- * for its quadratics. An image farther (in the metric sx, sy) than the
- * farthest sample is left out, so next to a plane wall of a lattice the
- * row is the interior row, and a field of the wall-parallel coordinate
- * alone stays one (a stratification beside adiabatic walls: the CPM fit
- * with d/dn = 0 rows, lap_cpm_neumann, differed from the interior row in
- * its higher moments, and T varied along the wall by 1e-4 in the first
- * seconds; README, "Zero-gradient walls by images"). positiveRows applies
- * to the extended row (dmax as positive_row). The images' coefficients
- * are summed into their sources' a [nn]; the zero-gradient samples get 0
- * and the particle's own images drop out of sum_j a_j (phi_j - phi_i).
- * Returns 1 with the row made (*made: positiveRows changed it), 0 where
- * images do not apply (more than two planes, a sample beyond a plane, no
- * room, or the fit failed): the caller then takes lap_cpm_neumann. */
+ * lie on one plane, or on two perpendicular or parallel ones, is CPM's
+ * row over the other samples, the particle itself (offset 0) and their
+ * mirror images across those planes (and across both, at a corner of
+ * two), each image carrying its source's value: the even extension of a
+ * field with zero normal gradient, exact for its quadratics. An image
+ * farther from the particle along a plane's normal than the farthest
+ * sample (plus a quarter of the cell's extent ex, ey along it) is left
+ * out, so next to a straight wall of a lattice the row is the interior
+ * row, and a field of the wall-parallel coordinate alone stays one (a
+ * stratification beside adiabatic walls: the CPM fit with d/dn = 0 rows,
+ * lap_cpm_neumann, differed from the interior row in its higher moments,
+ * and T varied along the wall by 1e-4 in the first seconds; README,
+ * "Stratified rest while T changes"). The images' coefficients are summed
+ * into their sources' a [nn]; the zero-gradient samples get 0 and the
+ * particle's own images drop out of sum_j a_j (phi_j - phi_i).
+ * positiveRows is the caller's (in the derivative form). Returns 1 with
+ * the row made, 0 where images do not apply (more than two planes, two
+ * oblique ones, the particle or a sample beyond a plane, a value sample on
+ * one (a plane only partly zero-gradient), no room, or the fit failed):
+ * the caller then takes lap_cpm_neumann. */
 static int image_row(sol_work *w, const lap_params *lp, const double *nx, const double *ny, int nn, double l0,
                      double ex, double ey, double sx, double sy, double *a)
 {
@@ -1691,10 +1694,17 @@ static int image_row(sol_work *w, const lap_params *lp, const double *nx, const 
         while (q < np && !(pn[q][0] * nx[j] + pn[q][1] * ny[j] > 1 - 1e-12 && fabs(pd[q] - d) <= tol))
             q++;
         if (q == np) {
-            if (np == 2)
+            if (np == 2 || d < -tol)
                 return 0;
             pn[np][0] = nx[j], pn[np][1] = ny[j], pd[np++] = d;
         }
+    }
+    /* across two planes only if they are perpendicular (a corner) or
+     * parallel (a channel): else the double image is a rotation */
+    if (np == 2) {
+        double c = pn[0][0] * pn[1][0] + pn[0][1] * pn[1][1];
+        if (!(fabs(c) < 1e-9 || c < -1 + 1e-9))
+            return 0;
     }
     /* the samples kept, every one on the inner side of each plane, and
      * their reach along each plane's normal from the particle */
@@ -1705,7 +1715,7 @@ static int image_row(sol_work *w, const lap_params *lp, const double *nx, const 
             continue;
         for (int q = 0; q < np; q++) {
             double d = pn[q][0] * w->h[j] + pn[q][1] * w->k[j];
-            if (d > pd[q] + tol)
+            if (d > pd[q] - tol) /* beyond the plane, or a value on it */
                 return 0;
             reach[q] = fmax(reach[q], fabs(d));
         }
@@ -1750,17 +1760,15 @@ static int image_row(sol_work *w, const lap_params *lp, const double *nx, const 
             }
             /* a quarter of the cell's extent along the normal spare, so a
              * lattice's row does not change as its particles jitter; an
-             * image within a twentieth of it of the particle (the
-             * particle's own, when it has come that close to the plane)
+             * image within a twentieth of the cell's extents of the
+             * particle (its own, when it has come that close to the plane)
              * is left out: its weight 1/r^6 would swamp the fit */
             int in = 1;
-            double near = 0;
-            for (int q = 0; q < np; q++) {
-                double ext = fabs(pn[q][0]) * ex + fabs(pn[q][1]) * ey;
-                in &= fabs(pn[q][0] * x + pn[q][1] * y) <= reach[q] + 0.25 * ext;
-                near = fmax(near, 0.05 * ext);
-            }
-            if (!in || x * x + y * y < near * near)
+            for (int q = 0; q < np; q++)
+                in &= fabs(pn[q][0] * x + pn[q][1] * y) <=
+                      reach[q] + 0.25 * (fabs(pn[q][0]) * ex + fabs(pn[q][1]) * ey);
+            double u = x / ex, v = y / ey;
+            if (!in || u * u + v * v < 0.05 * 0.05)
                 continue;
             w->ih[ne] = x, w->ik[ne] = y;
             w->isrc[ne++] = w->isrc[e];
@@ -1862,7 +1870,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
     const lap_params cpm = {LAP_CPM, 0};
     const part_boundary *bp = &st->bp;
     int bal = buoyant && set->balanced;
-    int kick = bal || set->p_theta > 0; /* gpx, gpy: grad pi_b and/or th grad p^{n-1/2} */
+    int kick = bal || set->p_theta > 0; /* gpx, gpy: -R (balance_buoyancy) and/or th grad p^{n-1/2} */
     int damp = walls_zero_gradient(su);  /* st->wdamp, for step10_correct */
     int sepT = buoyant && st->ndiffer > 0; /* rows of their own for T (st->avT) */
     st->sepT = sepT;
@@ -1923,7 +1931,8 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
                 }
             }
             /* the zero-gradient samples by images where they lie on one or
-             * two planes (image_row, positiveRows included), else as
+             * two planes (image_row; positiveRows below, in the derivative
+             * form), else as
              * d/dn = 0 rows of the fit */
             int own = sepT && differ;
             int imu = anyu && image_row(w, lp, unx, uny, nn, l0, m->dx[c], m->dy[c], sx, sy, w->c0);
@@ -2184,7 +2193,7 @@ static void move_particles(sol *S, double *u, double *v, double dt, size_t *wall
 
 /* pressureTheta th > 0 (a departure from Eq. 10, docs/METHOD.md section 8
  * "Pressure along the path"): the predictor (Eq. 14) carries -th dt grad
- * p^{n-1/2}(r^n) in its right-hand side, with gpx/gpy (added to grad pi_b
+ * p^{n-1/2}(r^n) in its right-hand side, with gpx/gpy (added to -R
  * under balanced buoyancy): the previous step's pressure (balanced
  * buoyancy: its pi_d part) by the MLS derivative of Eqs. 33-34 (the
  * gradient of Step 10). Implicit viscosity then balances it at walls, as
@@ -2493,12 +2502,13 @@ static void interpolation_error(sol *S)
  * face fluxes of the hydrostatic quadratic (interior and fixed-pressure
  * faces, below; zero where the velocity is prescribed, as u* there) and
  * pi's fixed face values (pi_d's are then zero, step_face_pressure); the
- * predictor then carries b - grad pi_b at each particle (the MLS
- * derivative of Eq. 10 at r^n), and the step's PPE gives pi_d, which the
- * correction applies as usual. At rest in a stable stratification b -
- * grad pi_b vanishes (exactly for linear T, on any mesh), so the
- * viscous predictor no longer damps the buoyancy near walls without the
- * pressure that balances it (the O(dt) spurious velocity of the source
+ * predictor then carries b - grad pi_b as R, what pi_b leaves of b at the
+ * faces reconstructed in the cells and interpolated to the particles at
+ * r^n (below), and the step's PPE gives pi_d, which the correction applies
+ * as usual. At rest in a stable stratification R vanishes (exactly for
+ * linear T on any mesh, for any profile along g on orthogonal meshes), so
+ * the viscous predictor no longer damps the buoyancy near walls without
+ * the pressure that balances it (the O(dt) spurious velocity of the source
  * splitting). b_f uses T_f, the mean of the two cells' T_P + grad T_P .
  * (x_f - x_P) (the LS gradient of Eq. 26; exact for linear T), on
  * fixed-pressure boundary faces the face's boundary-particle temperature.

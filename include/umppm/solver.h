@@ -99,7 +99,8 @@ typedef struct sol_settings {
                                 is kept within the range of its samples widened
                                 by SOL_FIT_MARGIN of it (default 1; docs/METHOD.md
                                 section 8, "Bounded fits"); 0: the fits as they come */
-    int balanced;            /* buoyant: the predictor carries b - grad pi_b, pi_b the
+    int balanced;            /* buoyant: the predictor carries b - grad pi_b (by the
+                                reconstruction of its face residuals), pi_b the
                                 pressure that balances the buoyancy b (solver.c
                                 balance_buoyancy); 0: b alone, as [NSH16] Eq. 14 */
     double t_start;          /* start time: boundary conditions that are functions

@@ -180,9 +180,9 @@ max_u() {
 }
 # max_u_run CASE: "max time": the largest max |U| over the case's writes
 max_u_run() {
-    local t best=0 at=-
+    local t u best=0 at=-
     for t in $(cd "$1" && ls -d [0-9]* | grep -v '^0$' | sort -g); do
-        u=$(max_u "$1" "$t")
+        u=$(max_u "$1" "$t") || { echo "nan $t"; return 0; }
         if awk -v a="$u" -v b="$best" 'BEGIN { exit !(a > b) }'; then best=$u at=$t; fi
     done
     echo "$best $at"
@@ -225,7 +225,7 @@ for v in box symmetry graded gradedLinear triangles opening; do
     foam_set "$g" system/controlDict endTime 200
     foam_set "$g" system/controlDict writeInterval 5
     if run_ump "$g"; then
-        read -r um ut < <(max_u_run "$g")
+        read -r um ut < <(max_u_run "$g") || { um=nan; ut=-; }
         case $v in
         box | symmetry | gradedLinear | opening)
             check_below "$v: max |U| over t = 2.5 ... 200 s (largest at t = $ut)" "$um" 1e-8 ;;
