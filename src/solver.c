@@ -1414,6 +1414,46 @@ static inline double mls_extent(const sol_setup *su, double e)
     return su->set.mls_support > 0 ? -su->set.mls_support * e : e;
 }
 
+/* The MLS value fit (Eq. 32) at (x, y) in cell c of the cell vectors
+ * (vx, vy) [ncells] over the centroids of c's stencil into *ox, *oy
+ * (scratch w->h, k, pv, cy, c0); with walls != 0 also a sample at each
+ * wall face of the stencil's cells (su->wf_face): the owner's vector less
+ * its normal component, the zero normal gradient the PPE holds there
+ * (particle_pressure_gradient). Returns 1 if the fit fell back from the
+ * quadratic basis. */
+static int cell_vector_at(const sol_setup *su, sol_work *w, ump_idx c, double x, double y, const double *vx,
+                          const double *vy, int walls, double *ox, double *oy)
+{
+    const mesh2d *m = su->m;
+    int nn = 0;
+    for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
+        ump_idx q = su->st_cell[a];
+        double sx = su->st_sx ? su->st_sx[a] : 0, sy = su->st_sy ? su->st_sy[a] : 0;
+        w->h[nn] = m->cx[q] + sx - x;
+        w->k[nn] = m->cy[q] + sy - y;
+        w->pv[nn] = vx[q];
+        w->cy[nn++] = vy[q];
+        for (ump_idx d = walls ? su->wf_off[q] : 0; walls && d < su->wf_off[q + 1]; d++) {
+            ump_idx f = su->wf_face[d];
+            double vn = vx[q] * m->nx[f] + vy[q] * m->ny[f];
+            w->h[nn] = m->fx[f] + sx - x;
+            w->k[nn] = m->fy[f] + sy - y;
+            w->pv[nn] = vx[q] - vn * m->nx[f]; /* n . grad p = 0 (Eq. 25) */
+            w->cy[nn++] = vy[q] - vn * m->ny[f];
+        }
+    }
+    double ex = mls_extent(su, m->dx[c]), ey = mls_extent(su, m->dy[c]);
+    int fb = mls_weights(w->h, w->k, nn, ex, ey, w->c0, NULL, NULL, NULL) != MLS_QUADRATIC;
+    double gx = 0, gy = 0;
+    for (int j = 0; j < nn; j++) {
+        gx += w->c0[j] * w->pv[j];
+        gy += w->c0[j] * w->cy[j];
+    }
+    *ox = gx;
+    *oy = gy;
+    return fb;
+}
+
 /* grad p at every particle at its position (Eq. 10's gradient): the MLS
  * derivative (Eqs. 33-34) of the centroid pressures p of the particle's
  * cell and its N2 stencil, and of the prescribed pressures pfv at the
@@ -1458,27 +1498,17 @@ static long particle_pressure_gradient(sol *S, const double *p, const double *pf
         for (size_t i = 0; i < n; i++) {
             ump_idx c = P->cell[i];
             double x = P->x[i], y = P->y[i];
+            if (aniso) { /* the MLS value of the cell gradients */
+                fb += cell_vector_at(su, w, c, x, y, cgx, cgy, walls, &gxo[i], &gyo[i]);
+                continue;
+            }
+            /* samples: (h, k) offsets, pv the pressures */
             int nn = 0;
-            /* samples: (h, k) offsets; pv the pressures, or with aniso
-             * the cell gradients in pv (x) and cy (y) */
             for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
                 ump_idx q = su->st_cell[a];
                 double sx = su->st_sx ? su->st_sx[a] : 0, sy = su->st_sy ? su->st_sy[a] : 0;
                 w->h[nn] = m->cx[q] + sx - x;
                 w->k[nn] = m->cy[q] + sy - y;
-                if (aniso) {
-                    w->pv[nn] = cgx[q];
-                    w->cy[nn++] = cgy[q];
-                    for (ump_idx d = walls ? su->wf_off[q] : 0; walls && d < su->wf_off[q + 1]; d++) {
-                        ump_idx f = su->wf_face[d];
-                        double gn = cgx[q] * m->nx[f] + cgy[q] * m->ny[f];
-                        w->h[nn] = m->fx[f] + sx - x;
-                        w->k[nn] = m->fy[f] + sy - y;
-                        w->pv[nn] = cgx[q] - gn * m->nx[f]; /* n . grad p = 0 (Eq. 25) */
-                        w->cy[nn++] = cgy[q] - gn * m->ny[f];
-                    }
-                    continue;
-                }
                 w->pv[nn++] = p[q];
                 for (ump_idx d = su->pd_off[q]; d < su->pd_off[q + 1]; d++) {
                     ump_idx f = su->pd_face[d];
@@ -1488,34 +1518,19 @@ static long particle_pressure_gradient(sol *S, const double *p, const double *pf
                 }
             }
             double ex = mls_extent(su, m->dx[c]), ey = mls_extent(su, m->dy[c]);
-            if (!aniso) {
-                if (mls_gradient(w->h, w->k, w->pv, nn, ex, ey, &gxo[i], &gyo[i], NULL) != MLS_QUADRATIC)
-                    fb++;
-                continue;
-            }
-            if (mls_weights(w->h, w->k, nn, ex, ey, w->c0, NULL, NULL, NULL) != MLS_QUADRATIC)
+            if (mls_gradient(w->h, w->k, w->pv, nn, ex, ey, &gxo[i], &gyo[i], NULL) != MLS_QUADRATIC)
                 fb++;
-            double gx = 0, gy = 0;
-            for (int j = 0; j < nn; j++) {
-                gx += w->c0[j] * w->pv[j];
-                gy += w->c0[j] * w->cy[j];
-            }
-            gxo[i] = gx;
-            gyo[i] = gy;
         }
     }
     return fb;
 }
 
-/* scale times the MLS value fit (Eq. 32) at the particles of the cell
- * vectors (vx, vy) [ncells] over the centroids of each particle's cell
- * stencil (as particle_pressure_gradient's fit of cell gradients) into
- * ox, oy [particles]. Returns the count of fits that fell back from the
- * quadratic basis. */
+/* scale times cell_vector_at (no wall samples) at every particle of the
+ * cell vectors (vx, vy) [ncells] into ox, oy [particles]. Returns the
+ * count of fits that fell back from the quadratic basis. */
 static long particle_cell_vector(sol *S, const double *vx, const double *vy, double *ox, double *oy, double scale)
 {
     const sol_setup *su = &S->su;
-    const mesh2d *m = su->m;
     const part_set *P = S->st.P;
     size_t n = P->n;
     long fb = 0;
@@ -1524,26 +1539,9 @@ static long particle_cell_vector(sol *S, const double *vx, const double *vy, dou
         sol_work *w = &S->work[thread_id()];
 #pragma omp for schedule(static)
         for (size_t i = 0; i < n; i++) {
-            ump_idx c = P->cell[i];
-            int nn = 0;
-            for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
-                ump_idx q = su->st_cell[a];
-                double sx = su->st_sx ? su->st_sx[a] : 0, sy = su->st_sy ? su->st_sy[a] : 0;
-                w->h[nn] = m->cx[q] + sx - P->x[i];
-                w->k[nn] = m->cy[q] + sy - P->y[i];
-                w->pv[nn] = vx[q];
-                w->cy[nn++] = vy[q];
-            }
-            double ex = mls_extent(su, m->dx[c]), ey = mls_extent(su, m->dy[c]);
-            if (mls_weights(w->h, w->k, nn, ex, ey, w->c0, NULL, NULL, NULL) != MLS_QUADRATIC)
-                fb++;
-            double sx = 0, sy = 0;
-            for (int j = 0; j < nn; j++) {
-                sx += w->c0[j] * w->pv[j];
-                sy += w->c0[j] * w->cy[j];
-            }
-            ox[i] = scale * sx;
-            oy[i] = scale * sy;
+            fb += cell_vector_at(su, w, P->cell[i], P->x[i], P->y[i], vx, vy, 0, &ox[i], &oy[i]);
+            ox[i] *= scale;
+            oy[i] *= scale;
         }
     }
     return fb;

@@ -301,6 +301,16 @@ static void test_periodic_continuity(void **state)
     neumann_case(TM_HYBRID, 0.05, 1, LSOLVE_UMFPACK, 24);
 }
 
+/* Dirichlet flags [nfaces] (free after use): the left and right sides of
+ * a tm_mesh square fixed, top and bottom walls */
+static unsigned char *fixed_left_right(const mesh2d *m)
+{
+    unsigned char *dir = calloc((size_t)m->nfaces, 1);
+    for (ump_idx f = m->ninternal; f < m->nfaces; f++)
+        dir[f] = m->face_patch[f] == 1 || m->face_patch[f] == 3;
+    return dir;
+}
+
 /* Mixed: fixed pressure left/right, walls top/bottom: every cell balances */
 static void test_mixed_continuity(void **state)
 {
@@ -309,11 +319,9 @@ static void test_mixed_continuity(void **state)
     mesh2d *m = tm_mesh(TM_HYBRID, 20, 0.05, 0, &pm);
     lsq_grad *g = make_lsq(m);
     size_t nf = (size_t)m->nfaces, nc = (size_t)m->ncells;
-    unsigned char *dir = calloc(nf, 1);
+    unsigned char *dir = fixed_left_right(m);
     double *flux = malloc(sizeof(double) * nf), *pf = malloc(sizeof(double) * nf),
            *p = malloc(sizeof(double) * nc);
-    for (ump_idx f = m->ninternal; f < m->nfaces; f++)
-        dir[f] = m->face_patch[f] == 1 || m->face_patch[f] == 3;
     rng r = {7};
     random_flux(&r, nf, flux);
     for (size_t f = 0; f < nf; f++)
@@ -348,13 +356,11 @@ static void test_quadratic_flux(void **state)
     mesh2d *m = tm_mesh(TM_HYBRID, 16, 0.05, 0, &pm);
     lsq_grad *g = make_lsq(m);
     size_t nf = (size_t)m->nfaces, nc = (size_t)m->ncells;
-    unsigned char *dir = calloc(nf, 1);
+    unsigned char *dir = fixed_left_right(m);
     double *q = malloc(sizeof(double) * nc), *pf = malloc(sizeof(double) * nf),
            *gf = malloc(sizeof(double) * nf);
     const double a0[2] = {0.8, -1.7}, H[3] = {3.1, 0.9, -2.2};
 #define Q(x, y) (0.4 + a0[0] * (x) + a0[1] * (y) + 0.5 * (H[0] * (x) * (x) + 2 * H[1] * (x) * (y) + H[2] * (y) * (y)))
-    for (ump_idx f = m->ninternal; f < m->nfaces; f++)
-        dir[f] = m->face_patch[f] == 1 || m->face_patch[f] == 3;
     for (size_t c = 0; c < nc; c++)
         q[c] = Q(m->cx[c], m->cy[c]);
     for (size_t f = 0; f < nf; f++)
