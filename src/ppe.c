@@ -337,6 +337,8 @@ static ump_status build_quadratic_coefficients(ppe *P, ump_err *err)
 
 double ppe_face_quadratic_flux(const ppe *P, ump_idx f, const double a[2], const double H[3])
 {
+    if (!P->qcoef)
+        return face_quadratic_flux(P, f, a, H);
     const double *c = P->qcoef + 5 * (size_t)f;
     return c[0] * a[0] + c[1] * a[1] + c[2] * H[0] + c[3] * H[1] + c[4] * H[2];
 }
@@ -345,7 +347,7 @@ ump_status ppe_create(const mesh2d *m, const lsq_grad *g, const unsigned char *d
                       const ppe_opts *o, ppe **out, ump_err *err)
 {
     *out = NULL;
-    ppe_opts def = {LSOLVE_AUTO, 0, 0.0};
+    ppe_opts def = {LSOLVE_AUTO, 0, 0.0, 0};
     if (!o)
         o = &def;
     UMP_CHECK(g && g->m == m, err, UMP_ERR_INPUT, "%s: PPE needs the LS gradient of the same mesh",
@@ -386,7 +388,7 @@ ump_status ppe_create(const mesh2d *m, const lsq_grad *g, const unsigned char *d
         goto fail;
     }
     if ((rc = build_face_operator(P, err)) != UMP_OK || (rc = assemble(P, err)) != UMP_OK ||
-        (rc = build_quadratic_coefficients(P, err)) != UMP_OK)
+        (o->quadratic && (rc = build_quadratic_coefficients(P, err)) != UMP_OK))
         goto fail;
     if (!P->has_dirichlet && (rc = fix_reference(P, err)) != UMP_OK)
         goto fail;

@@ -38,6 +38,9 @@ typedef struct ppe_opts {
     lsolve_kind solver;   /* default LSOLVE_AUTO */
     ump_idx ref_cell;     /* used only if no face is Dirichlet */
     double ref_value;
+    int quadratic;        /* 1: store the monomials' fluxes for
+                             ppe_face_quadratic_flux (balanced buoyancy);
+                             0: it computes them at each call */
 } ppe_opts;
 
 typedef struct ppe {
@@ -99,7 +102,8 @@ void ppe_face_gradient_flux(const ppe *P, const double *p, const double *pf, dou
  * field q, so fluxes made of it are solved exactly by a global quadratic
  * with that gradient and Hessian (the balanced buoyancy, docs/METHOD.md
  * section 8). Dirichlet faces: their rule applied to q with q(x_f) = 0;
- * 0 on the other boundary faces. Five products: the monomials' fluxes are
- * stored by ppe_create. */
+ * 0 on the other boundary faces. Five products where ppe_create stored the
+ * monomials' fluxes (ppe_opts quadratic), else Eq. 25 expanded at each call
+ * (the same numbers). */
 double ppe_face_quadratic_flux(const ppe *P, ump_idx f, const double a[2], const double H[3]);
 #endif

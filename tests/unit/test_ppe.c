@@ -53,7 +53,7 @@ static double pex(double x, double y, bc_kind bc, double *gx, double *gy)
 static ppe *make_ppe(const mesh2d *m, const lsq_grad *g, const unsigned char *dir, lsolve_kind kind,
                      ump_idx ref, double refv)
 {
-    ppe_opts o = {kind, ref, refv};
+    ppe_opts o = {kind, ref, refv, 1};
     ppe *P = NULL;
     ump_err err;
     if (ppe_create(m, g, dir, &o, &P, &err) != UMP_OK)
@@ -367,14 +367,22 @@ static void test_quadratic_flux(void **state)
         pf[f] = Q(m->fx[f], m->fy[f]);
 #undef Q
     ppe *P = make_ppe(m, g, dir, LSOLVE_AUTO, 0, 0);
+    /* and without the stored fluxes (ppe_opts quadratic 0): the same */
+    ppe_opts o0 = {LSOLVE_AUTO, 0, 0, 0};
+    ppe *P0 = NULL;
+    ump_err err;
+    if (ppe_create(m, g, dir, &o0, &P0, &err) != UMP_OK)
+        fail_msg("%s", err.msg);
+    assert_non_null(P->qcoef);
+    assert_null(P0->qcoef);
     ppe_face_gradient_flux(P, q, pf, gf);
     double e = 0, scale = 0;
     int ndir = 0;
     for (ump_idx f = 0; f < m->nfaces; f++) {
         double x = m->fx[f], y = m->fy[f];
         double a[2] = {a0[0] + H[0] * x + H[1] * y, a0[1] + H[1] * x + H[2] * y};
-        double s = ppe_face_quadratic_flux(P, f, a, H);
-        e = fmax(e, fabs(s - gf[f]));
+        double s = ppe_face_quadratic_flux(P, f, a, H), s0 = ppe_face_quadratic_flux(P0, f, a, H);
+        e = fmax(e, fmax(fabs(s - gf[f]), fabs(s0 - gf[f])));
         scale = fmax(scale, fabs(gf[f]));
         ndir += f >= m->ninternal && dir[f];
     }
@@ -383,6 +391,7 @@ static void test_quadratic_flux(void **state)
     assert_true(ndir > 0);
     assert_true(e < 1e-12 * scale);
     ppe_free(&P);
+    ppe_free(&P0);
     lsq_free(&g);
     mesh_free(&m);
     pmesh_free(&pm);
@@ -497,7 +506,7 @@ static void test_refusals(void **state)
     unsigned char *dir = calloc((size_t)m->nfaces, 1);
     ppe *P = NULL;
     ump_err err;
-    ppe_opts o = {LSOLVE_AUTO, 16, 0};
+    ppe_opts o = {LSOLVE_AUTO, 16, 0, 0};
     assert_int_equal(ppe_create(m, g, NULL, &o, &P, &err), UMP_ERR_INPUT);
     assert_non_null(strstr(err.msg, "pRefCell 16"));
     assert_null(P);
