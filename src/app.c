@@ -1213,6 +1213,8 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     if (strcmp(a.um.laplacian, "CPM") != 0 && strcmp(a.um.laplacian, "CPM4") != 0)
         printf(" (r_e = %g x spacing)", lap_re_factor(&(lap_params){(lap_model)lap_parse(a.um.laplacian),
                                                                    a.um.re_factor}));
+    if (a.um.p_theta > 0)
+        printf(", pressureTheta %g", a.um.p_theta);
     if (a.bu.on)
         printf(", buoyancy %s", a.um.buoyancy_balanced ? "balanced" : "source");
     printf(", PPE solver %s, predictor BiCGSTAB/%s tolerance %g\n", a.um.ppe_solver, a.um.pred_pc,
