@@ -1296,7 +1296,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
                    "No Iterations %d\n", k == 2 ? "T" : a.m->ax[k] == 0 ? "Ux" : a.m->ax[k] == 1 ? "Uy" : "Uz",
                    st.pred[k].res0, st.pred[k].res, st.pred[k].iterations);
         if (st.lap_fallbacks || st.mls_fallbacks)
-            printf("Fallbacks: %d particle Laplacians (MPS), %d MLS fits (linear/Shepard)\n",
+            printf("Fallbacks: %d particle Laplacian rows (another row form), %d MLS fits (linear/Shepard)\n",
                    st.lap_fallbacks, st.mls_fallbacks);
         if (st.positive_rows)
             printf("Positive rows: %d particle Laplacians made positive\n", st.positive_rows);

@@ -2424,6 +2424,49 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux
     }
 }
 
+/* Open faces whose velocity is zeroGradient at this step (Step 8 and the
+ * interpolation error): their boundary particles take the mean increment
+ * fu - u^n of the owner cell's particles, so they are at the level of the
+ * particle field fu being fitted. Returns 1 if any moved (the values are
+ * kept in bpu0, bpv0 for restore_open_boundary), else 0. */
+static int shift_open_boundary(sol *S, const double *fu, const double *fv)
+{
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    part_boundary *bp = &st->bp;
+    int moved = 0;
+    for (ump_idx b = 0; b < bp->n; b++) {
+        ump_idx f = bp->face[b], o = m->owner[f];
+        if (!open_zero_gradient(su, st, f))
+            continue;
+        if (!moved) { /* the first open face: keep the values to restore */
+            memcpy(st->bpu0, bp->u, (size_t)bp->n * sizeof *bp->u);
+            memcpy(st->bpv0, bp->v, (size_t)bp->n * sizeof *bp->v);
+            moved = 1;
+        }
+        double du = 0, dv = 0;
+        ump_idx k0 = st->bins.off[o], k1 = st->bins.off[o + 1];
+        for (ump_idx q = k0; q < k1; q++) {
+            size_t i = st->bins.idx[q];
+            du += fu[i] - st->P->u[i];
+            dv += fv[i] - st->P->v[i];
+        }
+        if (k1 > k0) {
+            bp->u[b] += du / (double)(k1 - k0);
+            bp->v[b] += dv / (double)(k1 - k0);
+        }
+    }
+    return moved;
+}
+
+static void restore_open_boundary(sol *S)
+{
+    part_boundary *bp = &S->st.bp;
+    memcpy(bp->u, S->st.bpu0, (size_t)bp->n * sizeof *bp->u);
+    memcpy(bp->v, S->st.bpv0, (size_t)bp->n * sizeof *bp->v);
+}
+
 /* u* at face centres (the fluxes u*_f . A_f of Eq. 20) and centroids, by
  * MLS from the particles at r*; faces whose velocity is prescribed take it
  * (symmetry planes and slip walls: no flux). */
@@ -2449,34 +2492,10 @@ static void step8_mls_velocity(sol *S)
      * it the flux out of a viscous channel lacked dt nu lap(u), and the PPE
      * left the last half cell before the outlet without its pressure drop
      * (Poiseuille, Re 10: p 0 instead of 0.06 in the last column). */
-    part_boundary *bp = &st->bp;
-    int moved = 0;
-    for (ump_idx b = 0; b < bp->n; b++) {
-        ump_idx f = bp->face[b], o = m->owner[f];
-        if (!open_zero_gradient(su, st, f))
-            continue;
-        if (!moved) { /* the first open face: keep the values to restore */
-            memcpy(st->bpu0, bp->u, (size_t)bp->n * sizeof *bp->u);
-            memcpy(st->bpv0, bp->v, (size_t)bp->n * sizeof *bp->v);
-            moved = 1;
-        }
-        double du = 0, dv = 0;
-        ump_idx k0 = st->bins.off[o], k1 = st->bins.off[o + 1];
-        for (ump_idx q = k0; q < k1; q++) {
-            size_t i = st->bins.idx[q];
-            du += st->us[i] - st->P->u[i];
-            dv += st->vs[i] - st->P->v[i];
-        }
-        if (k1 > k0) {
-            bp->u[b] += du / (double)(k1 - k0);
-            bp->v[b] += dv / (double)(k1 - k0);
-        }
-    }
+    int moved = shift_open_boundary(S, st->us, st->vs);
     mls_to_mesh(S, st->us, st->vs, st->flux, st->usc, st->vsc);
-    if (moved) {
-        memcpy(bp->u, st->bpu0, (size_t)bp->n * sizeof *bp->u);
-        memcpy(bp->v, st->bpv0, (size_t)bp->n * sizeof *bp->v);
-    }
+    if (moved)
+        restore_open_boundary(S);
 }
 
 /* The fixed face values of the pressure the step's PPE solves for: pi's
@@ -2507,8 +2526,9 @@ static const double *step_face_pressure(const sol *S)
  * dt (G p^{n-1/2})_f). Without the kick's two gradients in eps their
  * difference stayed in the pressure written, and through p^{n-1/2} in
  * the next step's, growing it by 1/(1 - th): Taylor-Green on 1 600 cells,
- * pressure error 0.110 against 0.035 at th = 0 (README, "Defaults by the
- * boundaries"). x0, y0 are scratch until Step 7, gflux until Step 9. */
+ * pressure error 0.110 against 0.035 at th = 0 (README, "Settings for
+ * flows without walls"). x0, y0 are scratch until Step 7, gflux until
+ * Step 9. */
 static void interpolation_error(sol *S, double dt)
 {
     const sol_setup *su = &S->su;
@@ -2529,7 +2549,12 @@ static void interpolation_error(sol *S, double dt)
         fv = st->y0;
         ppe_face_gradient_flux(su->pe, st->pold, step_face_pressure(S), st->gflux);
     }
+    /* open zero-gradient faces: their boundary particles with the kick, as
+     * Step 8 gives them the increment of u* */
+    int moved = th > 0 && shift_open_boundary(S, fu, fv);
     mls_to_mesh(S, fu, fv, st->fluxe, NULL, NULL);
+    if (moved)
+        restore_open_boundary(S);
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx f = 0; f < m->nfaces; f++) {
         double phi = th > 0 ? st->flux[f] - th * dt * st->gflux[f] : st->flux[f];

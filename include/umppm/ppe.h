@@ -63,7 +63,8 @@ typedef struct ppe {
     ump_idx *fop_col;         /* [fop_off[nfaces]] cells */
     double *fop_val;          /* [fop_off[nfaces]] */
     /* [5 nfaces] ppe_face_quadratic_flux of x, y, x^2/2, xy, y^2/2 about
-     * x_f: the face's flux of any quadratic is their combination */
+     * x_f: the face's flux of any quadratic is their combination; NULL
+     * unless ppe_opts quadratic */
     double *qcoef;
     /* Reference cell (no Dirichlet face): its row becomes ref_diag p = ref_diag
      * pRefValue and its column is moved to the right-hand side, which keeps a
@@ -104,6 +105,6 @@ void ppe_face_gradient_flux(const ppe *P, const double *p, const double *pf, dou
  * section 8). Dirichlet faces: their rule applied to q with q(x_f) = 0;
  * 0 on the other boundary faces. Five products where ppe_create stored the
  * monomials' fluxes (ppe_opts quadratic), else Eq. 25 expanded at each call
- * (the same numbers). */
+ * (the same numbers up to rounding). */
 double ppe_face_quadratic_flux(const ppe *P, ump_idx f, const double a[2], const double H[3]);
 #endif

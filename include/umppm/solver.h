@@ -130,7 +130,10 @@ typedef struct sol_stats {
                                     after the direct solve */
     const char *p_solver;        /* the direct solver's name (UMFPACK, ...) */
     int p_written;               /* this step computed the pressure written (sol_cell_p) */
-    int lap_fallbacks;           /* particles whose CPM matrix was singular */
+    int lap_fallbacks;           /* Laplacian rows that fell back to another
+                                    form (a singular fit: CPM4 to CPM to MPS,
+                                    images or d/dn rows); a particle can
+                                    count twice */
     int mls_fallbacks;           /* MLS fits that fell back to linear/Shepard */
     int bounded_values;          /* boundedFits: fitted values limited */
     int positive_rows;           /* positiveRows: CPM rows blended into or
