@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # bench/taylorGreen.sh [-variant UMPPMstar] [-maxCo 0.25 | -deltaT DT | -cfl C] [-endTime 5]
-#                      [-laplacian CPM] [-U 1] [-umppm "key value; ..."] [-icoFoam no] [n ...]
+#                      [-laplacian auto] [-paper] [-U 1] [-umppm "key value; ..."] [-icoFoam no] [n ...]
 # The Taylor-Green vortex of Section 4.1 of Ng, Sheu & Hwang (2016) (Re = 100,
 # periodic unit square, crossed triangles of Fig. 7: N_m = 4 n^2) for each n
 # (default 20 40 80: N_m = 1600 6400 25600), CFL maxCo (adjustTimeStep,
@@ -13,12 +13,15 @@
 # Eq. 42, and the signed amplitude error amp (> 0: decays too slowly); then
 # the observed orders between successive meshes. -U scales the initial vortex
 # (the step stays the one for U = 1: -U 0.01 is nearly Stokes flow, which
-# isolates the viscous errors); -umppm adds entries to the UMPPM dictionary. With -icoFoam
+# isolates the viscous errors); -umppm adds entries to the UMPPM dictionary.
+# On this periodic mesh the defaults (laplacian auto, pressureTheta auto) are
+# CPM4 and 0.5; -paper runs the paper's CPM and Eq. 10 (laplacian CPM;
+# pressureTheta 0), the defaults before 2026-12-06. With -icoFoam
 # yes, icoFoam runs the same case (same mesh and 0/, fixed deltaT = the mean of
 # umppmFoam's steps, skewCorrected linear interpolation) and its errors and time are printed below each row.
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
-variant=UMPPMstar maxCo=0.25 deltaT="" cfl="" endTime=5 lap=CPM ico=no U0=1 extra=
+variant=UMPPMstar maxCo=0.25 deltaT="" cfl="" endTime=5 lap=auto ico=no U0=1 extra= paper=
 while [ $# -gt 0 ]; do
     case $1 in
     -variant) variant=$2; shift 2 ;;
@@ -27,6 +30,7 @@ while [ $# -gt 0 ]; do
     -cfl) cfl=$2; shift 2 ;;
     -endTime) endTime=$2; shift 2 ;;
     -laplacian) lap=$2; shift 2 ;;
+    -paper) paper="pressureTheta 0;" lap=CPM; shift ;;
     -icoFoam) ico=$2; shift 2 ;;
     -U) U0=$2; shift 2 ;;
     -umppm) extra=$2; shift 2 ;;
@@ -42,7 +46,7 @@ if [ -n "$cfl" ]; then steprule="fixed deltaT = $cfl l_avg / U"
 elif [ -n "$deltaT" ]; then steprule="fixed deltaT = $deltaT"
 else steprule="adjustTimeStep maxCo = $maxCo"; fi
 printf "# Taylor-Green Re=100 %s %s, %s, endTime=%s\n" "$variant" "$lap" "$steprule" "$endTime"
-printf "# U = %s, UMPPM { %s }\n" "$U0" "$extra"
+printf "# U = %s, UMPPM { %s }\n" "$U0" "$paper $extra"
 printf "%6s %7s %6s %8s %8s %7s %9s %9s %9s %9s %9s %9s\n" N_m particles steps seconds us/p-step RSS_MiB L2rel decay Eq41 Eq42 amp pL2rel
 prev=""
 for n in "$@"; do
@@ -73,7 +77,7 @@ FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }
 solvers { p { solver PCG; preconditioner DIC; tolerance 1e-10; relTol 0; } pFinal { \$p; }
           U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-10; relTol 0; } }
 PISO { nCorrectors 2; nNonOrthogonalCorrectors 1; pRefCell 0; pRefValue 0; }
-UMPPM { variant $variant; laplacian $lap; $extra }
+UMPPM { variant $variant; laplacian $lap; $paper $extra }
 FS
     echo 'FoamFile { version 2.0; format ascii; class dictionary; object transportProperties; } nu 0.01;' \
         > "$c/constant/transportProperties"

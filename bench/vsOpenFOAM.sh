@@ -176,7 +176,7 @@ FoamFile { version 2.0; format ascii; class dictionary; object fvSolution; }
 solvers { p { solver PCG; preconditioner DIC; tolerance 1e-10; relTol 0; } pFinal { \$p; }
           U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-10; relTol 0; } }
 PISO { nCorrectors 2; nNonOrthogonalCorrectors 1; pRefCell 0; pRefValue 0; }
-UMPPM { variant UMPPMstar; laplacian CPM; }
+UMPPM { variant UMPPMstar; }
 FS
     echo 'FoamFile { version 2.0; format ascii; class dictionary; object transportProperties; } nu 0.01;' \
         > "$1/constant/transportProperties"

@@ -155,13 +155,27 @@ static void app_free(app *a)
     free(a->written);
 }
 
+/* The mesh has boundary faces besides its empty and cyclic patches: a
+ * wall, inlet, outlet or symmetry plane. */
+static int app_has_boundaries(const app *a) { return a->m->nfaces > a->m->ninternal; }
+
 static ump_status settings(const app *a, sol_settings *s, ump_err *err)
 {
     sol_default_settings(s);
     s->nu = a->tr.nu;
     s->variant = a->um.variant_star ? PART_UMPPM_STAR : PART_UMPPM;
     s->alpha = a->um.alpha;
-    s->lap.model = (lap_model)lap_parse(a->um.laplacian);
+    /* laplacian auto and pressureTheta auto: the quartic row and the
+     * trapezoidal pressure along the path where the mesh has no wall, inlet
+     * or outlet (every patch empty or cyclic), the paper's CPM and Eq. 10
+     * elsewhere. Measured (README, "Settings for flows without walls"): on
+     * Taylor-Green they remove the Laplacian's O(h^2) and the path's O(dt)
+     * errors, which otherwise cancel by chance; next to walls pressureTheta
+     * 0.5 over-corrects (the Re 1000 cavity's vortex too strong) and a
+     * quartic row costs +37 % for no gain */
+    int open = app_has_boundaries(a);
+    s->lap.model = strcmp(a->um.laplacian, "auto") == 0 ? (open ? LAP_CPM : LAP_CPM4)
+                                                         : (lap_model)lap_parse(a->um.laplacian);
     s->lap.re_factor = a->um.re_factor;
     s->ppe_solver = strcmp(a->um.ppe_solver, "UMFPACK") == 0 ? LSOLVE_UMFPACK
                     : strcmp(a->um.ppe_solver, "KLU") == 0   ? LSOLVE_KLU
@@ -180,7 +194,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->refill_k = (int)a->um.refill_k;
     s->refill_increment = a->um.refill_increment;
     s->mls_support = a->um.mls_support;
-    s->p_theta = a->um.p_theta;
+    s->p_theta = a->um.p_theta < 0 ? (open ? 0 : 0.5) : a->um.p_theta;
     s->positive = a->um.positive_rows;
     s->bounded_fits = a->um.bounded_fits;
     /* anisotropicCells auto: on where a cell is stretched beyond
@@ -1208,17 +1222,21 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     if (a.fo.ignored[0])
         printf("--> umppmFoam Warning: function objects not run by umppmFoam (ignored): %s\n\n",
                a.fo.ignored);
-    printf("UMPPM: variant %s, alpha %g, laplacian %s", a.um.variant_star ? "UMPPM*" : "UMPPM",
-           a.um.alpha, a.um.laplacian);
-    if (strcmp(a.um.laplacian, "CPM") != 0 && strcmp(a.um.laplacian, "CPM4") != 0)
-        printf(" (r_e = %g x spacing)", lap_re_factor(&(lap_params){(lap_model)lap_parse(a.um.laplacian),
-                                                                   a.um.re_factor}));
-    if (a.um.p_theta > 0)
-        printf(", pressureTheta %g", a.um.p_theta);
+    int lap_auto = strcmp(a.um.laplacian, "auto") == 0, theta_auto = a.um.p_theta < 0;
+    printf("UMPPM: variant %s, alpha %g, laplacian %s%s", a.um.variant_star ? "UMPPM*" : "UMPPM",
+           a.um.alpha, lap_name(s.lap.model), lap_auto ? " (auto)" : "");
+    if (s.lap.model != LAP_CPM && s.lap.model != LAP_CPM4)
+        printf(" (r_e = %g x spacing)", lap_re_factor(&s.lap));
+    if (s.p_theta > 0)
+        printf(", pressureTheta %g%s", s.p_theta, theta_auto ? " (auto)" : "");
     if (a.bu.on)
         printf(", buoyancy %s", a.um.buoyancy_balanced ? "balanced" : "source");
     printf(", PPE solver %s, predictor BiCGSTAB/%s tolerance %g\n", a.um.ppe_solver, a.um.pred_pc,
            a.um.pred_tol);
+    if ((lap_auto && s.lap.model == LAP_CPM4) || (theta_auto && s.p_theta > 0))
+        printf("The mesh has no wall, inlet or outlet (every patch empty or cyclic): laplacian auto and "
+               "pressureTheta auto take CPM4 and 0.5, the settings for flows without walls (README, "
+               "\"Settings for flows without walls\"); laplacian CPM and pressureTheta 0 give the paper's\n");
     printf("Time scheme: ddtSchemes %s; umppmFoam runs its first-order implicit UMPPM step (Eq. 14) "
            "for Euler and backward alike\n", a.ddt);
     printf("Threads: %d (OpenMP; set OMP_NUM_THREADS to change)\n\n", sol_threads());

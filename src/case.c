@@ -438,7 +438,7 @@ ump_status case_start_dir(const char *case_dir, const case_control *c, char *nam
 
 static const char *const variant_words[] = {"UMPPM", "UMPPMstar", "UMPPM*", NULL};
 static const int variant_values[] = {0, 1, 1};
-static const char *const laplacian_words[] = {"CPM", "MPS", "IPS", "PS", "CPM4", NULL};
+static const char *const laplacian_words[] = {"auto", "CPM", "MPS", "IPS", "PS", "CPM4", NULL};
 static const char *const ppe_words[] = {"auto", "UMFPACK", "KLU", "CHOLMOD", NULL};
 static const char *const pc_words[] = {"ILU0", "Jacobi", "none", NULL};
 static const char *const buoyancy_words[] = {"source", "balanced", NULL};
@@ -453,14 +453,14 @@ static const char *const refill_weight_words[] = {"increment", "distance", NULL}
 static const int refill_weight_values[] = {1, 0};
 
 #define UM_FIELD(f) offsetof(case_umppm, f), sizeof(((case_umppm *)0)->f)
-#define UM_NORANGE {0, 0, 0, 0, 0, 0, 0}
-/* has_lo, has_hi, lo_open, hi_open, lo, hi, or_zero */
-#define UM_OPEN01 {1, 1, 1, 1, 0, 1, 0}
-#define UM_ZERO_OR_1TO4 {1, 1, 0, 0, 1, 4, 1}
-#define UM_GT(x) {1, 0, 1, 0, (x), 0, 0}
-#define UM_GE(x) {1, 0, 0, 0, (x), 0, 0}
-#define UM_1TO16 {1, 1, 0, 0, 1, 16, 0}
-#define UM_0TOHALF {1, 1, 0, 0, 0, 0.5, 0}
+#define UM_NORANGE {0, 0, 0, 0, 0, 0, 0, 0}
+/* has_lo, has_hi, lo_open, hi_open, lo, hi, or_zero, or_auto */
+#define UM_OPEN01 {1, 1, 1, 1, 0, 1, 0, 0}
+#define UM_ZERO_OR_1TO4 {1, 1, 0, 0, 1, 4, 1, 0}
+#define UM_GT(x) {1, 0, 1, 0, (x), 0, 0, 0}
+#define UM_GE(x) {1, 0, 0, 0, (x), 0, 0, 0}
+#define UM_1TO16 {1, 1, 0, 0, 1, 16, 0, 0}
+#define UM_AUTO_OR_0TOHALF {1, 1, 0, 0, 0, 0.5, 0, 1}
 
 static const case_option umppm_options[] = {
     {"variant", CASE_OPT_CHOICE, "UMPPMstar", 1, variant_words, variant_values, UM_NORANGE,
@@ -469,8 +469,9 @@ static const case_option umppm_options[] = {
     {"alpha", CASE_OPT_SCALAR, "0.09", 0.09, NULL, NULL, UM_OPEN01,
      "UMPPM: delete one of two particles closer than sqrt(alpha) d_c",
      UM_FIELD(alpha)},
-    {"laplacian", CASE_OPT_CHOICE, "CPM", 0, laplacian_words, NULL, UM_NORANGE,
-     "particle Laplacian of the implicit viscous predictor", UM_FIELD(laplacian)},
+    {"laplacian", CASE_OPT_CHOICE, "auto", 0, laplacian_words, NULL, UM_NORANGE,
+     "predictor's Laplacian; auto: CPM4 if no wall, inlet or outlet, else CPM",
+     UM_FIELD(laplacian)},
     {"reFactor", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_ZERO_OR_1TO4,
      "r_e / particle spacing of IPS, PS, MPS; 0: the model's (2; MPS 2.1)",
      UM_FIELD(re_factor)},
@@ -500,8 +501,8 @@ static const case_option umppm_options[] = {
     {"mlsSupport", CASE_OPT_SCALAR, "2", 2, NULL, NULL, UM_ZERO_OR_1TO4,
      "MLS weight support in cell extents; 0: Eq. 35's scales (farthest sample)",
      UM_FIELD(mls_support)},
-    {"pressureTheta", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_0TOHALF,
-     "previous pressure gradient share applied at r^n; 0.5: trapezoidal",
+    {"pressureTheta", CASE_OPT_SCALAR, "auto", -1, NULL, NULL, UM_AUTO_OR_0TOHALF,
+     "old pressure gradient's share at r^n (0.5 trapezoidal); auto: 0.5 if CPM4",
      UM_FIELD(p_theta)},
     {"positiveRows", CASE_OPT_BOOL, "yes", 1, NULL, NULL, UM_NORANGE,
      "CPM rows that lose diagonal dominance made positive; no: the paper's CPM",
@@ -580,6 +581,8 @@ const char *case_option_allowed(const case_option *o, char *buf, size_t len)
         break;
     case CASE_OPT_SCALAR:
     case CASE_OPT_LABEL:
+        if (r->or_auto)
+            cat(buf, len, "auto or ");
         if (r->or_zero)
             cat(buf, len, "0 or ");
         if (r->has_lo && r->has_hi)
@@ -775,6 +778,12 @@ static ump_status read_option(const case_opt_table *t, const foam_dict *d, const
     const char *w = NULL;
     ump_err ignored;
     ump_status rc = UMP_OK;
+    /* a scalar that may be auto: stored as -1, the caller decides */
+    if (o->type == CASE_OPT_SCALAR && o->range.or_auto &&
+        foam_get_word_or(d, leaf, NULL, &w, &ignored) == UMP_OK && strcmp(w, "auto") == 0) {
+        store(o, u, -1, 0, 0, NULL);
+        return UMP_OK;
+    }
     switch (o->type) {
     case CASE_OPT_SCALAR:
         rc = foam_get_scalar_or(d, leaf, 0, &v, &ignored);
@@ -918,8 +927,8 @@ static const char *const source_words[] = {"density", "mixed", NULL};
 static const int source_values[] = {0, 1};
 
 #define ML_FIELD(f) offsetof(case_meshless, f), sizeof(((case_meshless *)0)->f)
-#define ML_RANGE(lo, hi) {1, 1, 1, 0, (lo), (hi), 0}       /* (lo, hi] */
-#define ML_CLOSED(lo, hi) {1, 1, 0, 0, (lo), (hi), 0}      /* [lo, hi] */
+#define ML_RANGE(lo, hi) {1, 1, 1, 0, (lo), (hi), 0, 0}       /* (lo, hi] */
+#define ML_CLOSED(lo, hi) {1, 1, 0, 0, (lo), (hi), 0, 0}      /* [lo, hi] */
 
 static const case_option meshless_options[] = {
     {"method", CASE_OPT_CHOICE, "MPS", 0, method_words, NULL, UM_NORANGE,

@@ -1616,6 +1616,7 @@ static double bound_fit(sol_work *w, const double *s, size_t n, double v, double
     if (margin < 0 || n == 0)
         return v;
     double lo = s[0], hi = s[0];
+#pragma omp simd reduction(min : lo) reduction(max : hi)
     for (size_t j = 1; j < n; j++) {
         lo = s[j] < lo ? s[j] : lo;
         hi = s[j] > hi ? s[j] : hi;
@@ -2049,7 +2050,8 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
 }
 
 /* Solve the rows of step6_rows for u*, v* (and T^{n+1}), warm-started from
- * the particle values: u and v (and T when kappa = nu) in lockstep. */
+ * the particle values with the step's explicit forces applied: u and v
+ * (and T when kappa = nu) in lockstep. */
 static ump_status step6_solve(sol *S, double dt, sol_stats *stats, ump_err *err)
 {
     const sol_setup *su = &S->su;
@@ -2058,8 +2060,20 @@ static ump_status step6_solve(sol *S, double dt, sol_stats *stats, ump_err *err)
     const sol_settings *set = &su->set;
     size_t n = P->n;
     lsolve_csr A = {(ump_idx)n, st->rp, st->ci, st->av};
-    memcpy(st->us, P->u, n * sizeof *st->us);
-    memcpy(st->vs, P->v, n * sizeof *st->vs);
+    if ((set->buoyant && set->balanced) || set->p_theta > 0) {
+        /* the start u^n - dt (gpx, gpy), the kick of pressureTheta and the
+         * balanced buoyancy's force that the right-hand side holds: the
+         * first residual is then the viscous change alone (with u^n the
+         * kick was most of it on Taylor-Green: 14.4 -> 10.2 iterations) */
+#pragma omp parallel for schedule(static) num_threads(S->nthreads)
+        for (size_t i = 0; i < n; i++) {
+            st->us[i] = P->u[i] - dt * st->gpx[i];
+            st->vs[i] = P->v[i] - dt * st->gpy[i];
+        }
+    } else {
+        memcpy(st->us, P->u, n * sizeof *st->us);
+        memcpy(st->vs, P->v, n * sizeof *st->vs);
+    }
     if (set->buoyant)
         memcpy(st->Ts, P->T, n * sizeof *st->Ts);
     double dnu = dt * set->nu, dkap = dt * set->kappa;

@@ -97,7 +97,7 @@ typedef struct case_umppm {
     long refill_k;               /* refillParticles: default 4, 1..16 */
     int refill_increment;        /* refillWeights: 1 increment (default), 0 distance */
     double mls_support;          /* mlsSupport: 2 (default) or 1..4 cell extents; 0: Eq. 35's scales */
-    double p_theta;              /* pressureTheta: 0 (default) .. 0.5 */
+    double p_theta;              /* pressureTheta: 0 .. 0.5; -1: auto (default) */
     int anisotropic;             /* anisotropicCells: -1 auto (default), 0 or 1 */
     int positive_rows;           /* positiveRows: default 1 */
     int bounded_fits;            /* boundedFits: default 1 */
@@ -117,12 +117,15 @@ typedef enum case_opt_type {
 } case_opt_type;
 
 /* Allowed numbers of a scalar or label option: [lo, hi] with each end
- * closed, open or absent, and optionally the single value 0 besides. */
+ * closed, open or absent, and optionally the single value 0 and the word
+ * auto besides. */
 typedef struct case_opt_range {
     int has_lo, has_hi;          /* 0: no bound on that side */
     int lo_open, hi_open;        /* 1: the bound itself is excluded */
     double lo, hi;
     int or_zero;                 /* 0 is allowed besides the range */
+    int or_auto;                 /* the word auto is allowed (scalar:
+                                    stored as -1, the caller decides) */
 } case_opt_range;
 
 typedef struct case_option {

@@ -39,6 +39,8 @@
 #     section 8; U is not asserted there: one time swings from 0.14 to
 #     0.29, measured 0.193). With the
 #     paper's refill (`refill centroid`) U was 0.354 from icoFoam's;
+#   - cavity: the defaults laplacian auto and pressureTheta auto are the
+#     paper's CPM and Eq. 10 on this mesh with walls (the log's UMPPM line);
 #   - cavityGrade (starts at 0.5, which its Allrun maps from cavity): refused
 #     with one error line naming the controlDict, as icoFoam refuses it.
 # Needs UMPPMFOAM and TOOLDIR (foamCompare).
@@ -63,6 +65,10 @@ if "$UMPPMFOAM" -case "$c" > "$c/log.umppmFoam" 2>&1; then
             { echo "  FAIL cavity: $t/U or its cloud missing"; fail=1; }
     done
     check_range "cavity: max continuity error" "$(log_max_continuity "$c/log.umppmFoam")" 0 1e-12
+    # no UMPPM dictionary: laplacian auto and pressureTheta auto take the
+    # paper's CPM and Eq. 10 on a mesh with walls
+    grep -q '^UMPPM: .*laplacian CPM (auto), PPE' "$c/log.umppmFoam" ||
+        { echo "  FAIL cavity: the log does not name laplacian CPM (auto) without pressureTheta"; fail=1; }
     mkdir -p "$c/ico" && cp -r "$ex/cavity/cavity/0" "$c/constant" "$c/system" "$c/ico/"
     run_in "$c/ico" icoFoam icoFoam || fail=1
     rel=$("$TOOLDIR/foamCompare" "$c" 0.5 "$c/ico" 0.5 U | awk '$1 == "U" { print $4 }')

@@ -4,7 +4,8 @@
 # and with 2 threads gives bit-identical results.
 # Cases: the 20x20 blockMesh cavity (Re 100) with the adaptive UMPPM variant
 # (deletion and refill every step, so particle counts and order matter), and
-# the Taylor-Green vortex on 1600 periodic crossed triangles (UMPPM*),
+# the Taylor-Green vortex on 1600 periodic crossed triangles (UMPPM*; the
+# defaults there: laplacian CPM4, pressureTheta 0.5),
 # 20 steps each (the cavity also with laplacian CPM4 and pressureTheta
 # 0.5, and graded 1000:1 toward its walls, so anisotropicCells is on), and on 25 600 triangles for 5 steps (threaded binning); a
 # 20 x 10 channel with the boundary conditions of issue 15 (inlet

@@ -609,6 +609,10 @@ static void test_umppm_table(void **state)
         }
         case CASE_OPT_SCALAR:
             assert_int_equal(o->size, sizeof(double));
+            if (o->range.or_auto && strcmp(o->default_text, "auto") == 0) { /* auto is stored as -1 */
+                TU_CLOSE(o->default_value, -1, 0);
+                break;
+            }
             TU_CLOSE(strtod(o->default_text, &end), o->default_value, 0);
             assert_true(*end == '\0');
             break;
@@ -652,7 +656,8 @@ static void test_umppm_defaults(void **state)
     /* the defaults as they always were */
     assert_int_equal(def.variant_star, 1);
     TU_CLOSE(def.alpha, 0.09, 0);
-    assert_string_equal(def.laplacian, "CPM");
+    assert_string_equal(def.laplacian, "auto"); /* CPM4 without walls, else CPM (app.c) */
+    TU_CLOSE(def.p_theta, -1, 0);               /* auto: 0.5 without walls, else 0 */
     TU_CLOSE(def.re_factor, 0, 0);
     assert_int_equal(def.write_quality, 0);
     assert_string_equal(def.ppe_solver, "auto");
@@ -694,7 +699,11 @@ static void test_umppm_defaults(void **state)
     sol_default_settings(&s);
     assert_int_equal(s.variant, def.variant_star ? PART_UMPPM_STAR : PART_UMPPM);
     TU_CLOSE(s.alpha, def.alpha, 0);
-    assert_int_equal((int)s.lap.model, lap_parse(def.laplacian));
+    /* laplacian auto and pressureTheta auto are decided by the mesh in
+     * app.c; the solver's own defaults are their choice for a mesh with
+     * walls, the paper's */
+    assert_int_equal((int)s.lap.model, LAP_CPM);
+    TU_CLOSE(s.p_theta, 0, 0);
     TU_CLOSE(s.lap.re_factor, def.re_factor, 0);
     assert_int_equal(s.ppe_solver, LSOLVE_AUTO);
     assert_string_equal(def.ppe_solver, "auto");
@@ -751,6 +760,14 @@ static void test_umppm_values(void **state)
             fail_msg("%s %s: %s", ok[i].key, ok[i].value, err.msg);
     }
     assert_string_equal(u.cloud_name, "my cloud");
+    /* pressureTheta: auto (stored as -1) or a number in [0, 0.5] */
+    struct { const char *w; double v; } th[] = {{"auto", -1}, {"0", 0}, {"0.25", 0.25}, {"0.5", 0.5}};
+    for (size_t i = 0; i < sizeof th / sizeof th[0]; i++) {
+        write_one(d, "pressureTheta", th[i].w);
+        if (case_read_umppm(d, &u, &err) != UMP_OK)
+            fail_msg("pressureTheta %s: %s", th[i].w, err.msg);
+        TU_CLOSE(u.p_theta, th[i].v, 0);
+    }
     /* anisotropicCells: auto or any OpenFOAM Switch word */
     struct { const char *w; int v; } an[] = {{"auto", -1}, {"yes", 1}, {"off", 0}, {"y", 1}, {"n", 0},
                                              {"t", 1}, {"f", 0}, {"none", 0}, {"true", 1}};
@@ -785,7 +802,10 @@ static void test_umppm_bad_values(void **state)
         {"variant", "foo", "system/fvSolution:4: UMPPM variant 'foo' is not one of: UMPPM UMPPMstar UMPPM*"},
         {"variant", "UMPPM star", "system/fvSolution:4: UMPPM variant: expected one word, found word 'UMPPM' ...; "
                                   "allowed UMPPM UMPPMstar UMPPM*"},
-        {"laplacian", "SPH", "system/fvSolution:4: UMPPM laplacian 'SPH' is not one of: CPM MPS IPS PS"},
+        {"laplacian", "SPH", "system/fvSolution:4: UMPPM laplacian 'SPH' is not one of: auto CPM MPS IPS PS CPM4"},
+        {"pressureTheta", "0.6", "system/fvSolution:4: UMPPM pressureTheta 0.6 is out of range: allowed auto or [0, 0.5]"},
+        {"pressureTheta", "half", "system/fvSolution:4: UMPPM pressureTheta: expected a number, found word 'half'; "
+                                  "allowed auto or [0, 0.5]"},
         {"ppeSolver", "MUMPS", "system/fvSolution:4: UMPPM ppeSolver 'MUMPS' is not one of: auto UMFPACK KLU CHOLMOD"},
         {"predictorSolver.preconditioner", "ILU1",
          "system/fvSolution:6: UMPPM predictorSolver.preconditioner 'ILU1' is not one of: ILU0 Jacobi none"},
