@@ -37,7 +37,7 @@
 #     names as auto) on N_m = 1600: Stokes (U =
 #     0.01) L2 < 0.02 (measured 0.0142; CPM 0.066: the quadratic fit's
 #     O(h^2) under-dissipation), at U = 1 L2 < 0.025 and Eq. 41 < 0.02
-#     (measured 0.0181 and 0.0045; 0.0169 and 0.0032 with refillParticles 5),
+#     (measured 0.0168 and 0.0031),
 #     and the pressure written < 0.08 (measured 0.065; 0.110 while the
 #     interpolation error left out the kick of pressureTheta, whose two
 #     gradients' difference stayed in p, docs/METHOD.md section 8, "The
