@@ -27,7 +27,9 @@
 #                    Default steps 160 80 40 20.
 #   taylorGreen6400  bench/taylorGreen.sh's case: bin/makeCrossedTriangleMesh
 #                    -n 40 (6400 crossed triangles), bin/setTaylorGreen, its
-#                    fvSchemes/fvSolution (UMPPMstar CPM), nu 0.01, fixed
+#                    fvSchemes/fvSolution (UMPPMstar; the defaults, on this
+#                    periodic mesh CPM4 and pressureTheta 0.5 since
+#                    2026-12-06, the paper's CPM before), nu 0.01, fixed
 #                    deltaT = 0.25/(2n) = 0.003125 (its -cfl 0.25). 160 steps.
 #   makeRunCavity    `make run`'s tutorials/cavity as its Allrun defaults set
 #                    it (40x40, Re 100, UMPPMstar), its controlDict with

@@ -173,8 +173,8 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
      * errors, which otherwise cancel by chance; next to walls pressureTheta
      * 0.5 over-corrects (the Re 1000 cavity's vortex too strong) and a
      * quartic row costs +37 % for no gain */
-    int open = app_has_boundaries(a);
-    s->lap.model = strcmp(a->um.laplacian, "auto") == 0 ? (open ? LAP_CPM : LAP_CPM4)
+    int walled = app_has_boundaries(a);
+    s->lap.model = strcmp(a->um.laplacian, "auto") == 0 ? (walled ? LAP_CPM : LAP_CPM4)
                                                          : (lap_model)lap_parse(a->um.laplacian);
     s->lap.re_factor = a->um.re_factor;
     s->ppe_solver = strcmp(a->um.ppe_solver, "UMFPACK") == 0 ? LSOLVE_UMFPACK
@@ -194,7 +194,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->refill_k = (int)a->um.refill_k;
     s->refill_increment = a->um.refill_increment;
     s->mls_support = a->um.mls_support;
-    s->p_theta = a->um.p_theta < 0 ? (open ? 0 : 0.5) : a->um.p_theta;
+    s->p_theta = a->um.p_theta < 0 ? (walled ? 0 : 0.5) : a->um.p_theta;
     s->positive = a->um.positive_rows;
     s->bounded_fits = a->um.bounded_fits;
     /* anisotropicCells auto: on where a cell is stretched beyond
@@ -219,8 +219,9 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     if ((s->lap.model == LAP_CPM || s->lap.model == LAP_CPM4) && a->um.re_factor != 0)
         return UMP_FAIL(err, UMP_ERR_INPUT,
                         "system/fvSolution: UMPPM reFactor %g is the influence radius of laplacian MPS, PS or "
-                        "IPS; laplacian %s has none (remove reFactor)",
-                        a->um.re_factor, a->um.laplacian);
+                        "IPS; laplacian %s%s has none (remove reFactor)",
+                        a->um.re_factor, lap_name(s->lap.model),
+                        strcmp(a->um.laplacian, "auto") == 0 ? " (auto)" : "");
     return UMP_OK;
 }
 
@@ -1234,9 +1235,11 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     printf(", PPE solver %s, predictor BiCGSTAB/%s tolerance %g\n", a.um.ppe_solver, a.um.pred_pc,
            a.um.pred_tol);
     if ((lap_auto && s.lap.model == LAP_CPM4) || (theta_auto && s.p_theta > 0))
-        printf("The mesh has no wall, inlet or outlet (every patch empty or cyclic): laplacian auto and "
-               "pressureTheta auto take CPM4 and 0.5, the settings for flows without walls (README, "
-               "\"Settings for flows without walls\"); laplacian CPM and pressureTheta 0 give the paper's\n");
+        printf("The mesh has no wall, inlet or outlet (every patch empty or cyclic): %s%s%s %s the "
+               "settings for flows without walls (README, \"Settings for flows without walls\"); "
+               "laplacian CPM and pressureTheta 0 are the paper's method\n",
+               lap_auto ? "laplacian auto (CPM4)" : "", lap_auto && theta_auto ? " and " : "",
+               theta_auto ? "pressureTheta auto (0.5)" : "", lap_auto && theta_auto ? "take" : "takes");
     printf("Time scheme: ddtSchemes %s; umppmFoam runs its first-order implicit UMPPM step (Eq. 14) "
            "for Euler and backward alike\n", a.ddt);
     printf("Threads: %d (OpenMP; set OMP_NUM_THREADS to change)\n\n", sol_threads());

@@ -81,7 +81,7 @@ typedef struct case_solution {
 typedef struct case_umppm {
     int variant_star;            /* 1: UMPPM*, 0: UMPPM; default 1 */
     double alpha;                /* default 0.09, in (0, 1) */
-    char laplacian[16];          /* CPM (default), MPS, IPS, PS */
+    char laplacian[16];          /* auto (default), CPM, MPS, IPS, PS, CPM4 */
     double re_factor;            /* default 0: the model's own */
     int write_quality;           /* default 0 */
     char ppe_solver[16];         /* auto (default), UMFPACK, KLU, CHOLMOD */

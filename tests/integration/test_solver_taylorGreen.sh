@@ -130,13 +130,13 @@ sed -i 's/UMPPM { variant UMPPMstar; laplacian CPM; pressureTheta 0; }/UMPPM { v
 grep -q 'mlsSupport 0' "$m0/system/fvSolution" || { echo "FAIL: could not set mlsSupport 0"; fail=1; }
 tg_run "$m0" "N_m 1600, CFL 0.25, mlsSupport 0" 0.006
 # pressureTheta 0.5 (trapezoidal pressure impulse along the path): the
-# damping of order dt that the default's impulse at r* adds to a turning
+# damping of order dt that the paper's impulse at r* adds to a turning
 # path is gone, so the run at U = 1 and a Stokes run at U = 0.01 (particles
 # hardly move; the error is the Laplacian's and implicit Euler's) end with
-# the same error: measured 0.0694 and 0.0662 (default: 0.026 and 0.065).
+# the same error: measured 0.0694 and 0.0662 (pressureTheta 0: 0.026 and 0.065).
 # With laplacian CPM4 (quartic basis) the Laplacian's part of that error
 # goes: Stokes L2 0.0142 (implicit Euler's alone is about 0.0098), and at
-# U = 1 L2 0.0181 and Eq. 41 0.0045 (README, "CPM4")
+# U = 1 L2 0.0168 and Eq. 41 0.0031 (README, "CPM4")
 # CPM4 with 0.5 are the defaults on this periodic mesh (laplacian auto and
 # pressureTheta auto: no wall, inlet or outlet), so those runs name neither.
 for lap in CPM CPM4; do
