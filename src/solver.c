@@ -1811,11 +1811,17 @@ static void sort_row(ump_idx *ci, double *av, double *avT, ump_idx n)
     }
 }
 
+/* The predictor's right-hand side carries -dt (gpx, gpy): the balanced
+ * buoyancy's force (balance_buoyancy) and/or pressureTheta's kick
+ * th grad p^{n-1/2} at r^n (step6_rows, step6_solve) */
+static int rhs_kick(const sol_settings *set) { return (set->buoyant && set->balanced) || set->p_theta > 0; }
+
 /* Rows of I + dt nu L (Eqs. 14, 16) and the right-hand sides, with the
  * Boussinesq source (Eq. 4) and, buoyant, the energy equation's (Eq. 37).
  * Count -> prefix sum -> fill: row i has one entry per fluid particle of
  * its cell's stencil (itself: the diagonal), boundary particles go to the
  * right-hand side. */
+
 /* The fluid particles in cell c's stencil (its runs of consecutive cells
  * in the bins). */
 static ump_idx stencil_particles(const sol_setup *su, const part_bins *bins, ump_idx c)
@@ -1872,7 +1878,7 @@ static ump_status step6_rows(sol *S, double dt, ump_err *err)
     const lap_params cpm = {LAP_CPM, 0};
     const part_boundary *bp = &st->bp;
     int bal = buoyant && set->balanced;
-    int kick = bal || set->p_theta > 0; /* gpx, gpy: -R (balance_buoyancy) and/or th grad p^{n-1/2} */
+    int kick = rhs_kick(set); /* gpx, gpy: -R (balance_buoyancy) and/or th grad p^{n-1/2} */
     int damp = walls_zero_gradient(su);  /* st->wdamp, for step10_correct */
     int sepT = buoyant && st->ndiffer > 0; /* rows of their own for T (st->avT) */
     st->sepT = sepT;
@@ -2060,7 +2066,7 @@ static ump_status step6_solve(sol *S, double dt, sol_stats *stats, ump_err *err)
     const sol_settings *set = &su->set;
     size_t n = P->n;
     lsolve_csr A = {(ump_idx)n, st->rp, st->ci, st->av};
-    if ((set->buoyant && set->balanced) || set->p_theta > 0) {
+    if (rhs_kick(set)) {
         /* the start u^n - dt (gpx, gpy), the kick of pressureTheta and the
          * balanced buoyancy's force that the right-hand side holds: the
          * first residual is then the viscous change alone (with u^n the
