@@ -168,6 +168,10 @@ typedef struct sol_setup {
     ump_idx wf_max;            /* most such faces of one stencil's cells */
     /* faces whose u* is interpolated (not fixed, not symmetry), by owner */
     ump_idx *of_off, *of_face;
+    /* [ncells] the owners of boundary faces: Step 8 fits their u*_P at
+     * every step (the boundary particles and a patch's face values read
+     * their u_P), not only at the steps that compute the fields written */
+    unsigned char *uc_keep;
 } sol_setup;
 
 /* A gathered neighbour: fluid particle ref >= 0, boundary particle
@@ -194,6 +198,11 @@ typedef struct sol_setup {
  * converged one, 0.2 let the cavity graded 10:1 toward its walls reach
  * 1.11x the lid speed */
 #define SOL_REFILL_NOISE 0.15
+/* Step 8 fits u*_P at the centroid of a cell with fewer fluid particles
+ * than this in its stencil at r* at every step (st->uc_fit): a refill
+ * falls back to u_P only where none is left at r^{n+1}, and between r* and
+ * r^{n+1} a particle moves by dt^2 |grad p| */
+#define SOL_FEW_FLUID 3
 /* The interpolation error's pressure by the transpose of the fits
  * (transpose_q): F of the 2 x 2 system sum_f |c_fj| n_f n_f^T + F I of a
  * particle, against the O(1) of a particle that enters its cell's face
@@ -257,7 +266,13 @@ typedef struct sol_state {
        interpolation error eps_f [nfaces], its potential q [ncells], zero
        face values [nfaces] */
     double *pout, *fluxe, *q, *fz;
-    int want_p;                /* this step computes pout (sol_want_pressure) */
+    int want_fields;           /* this step computes pout and u_P in every cell
+                                  (sol_want_fields) */
+    unsigned char *uc_fit;     /* [ncells] Step 8 fitted u*_P of this cell
+                                  whatever want_fields: uc_keep, or fewer than
+                                  SOL_FEW_FLUID fluid particles in its stencil
+                                  at r* (the only cells whose refill can fall
+                                  back to u_P, refill_carried) */
     int split;                 /* this step has computed q */
     /* anisotropicCells (transpose_q): p_d for the particles' Eq. 10
        [ncells], grad q . A_f [nfaces], and the face fits' coefficients of
@@ -429,7 +444,8 @@ void sol_free(sol **pS)
                    st->av, st->avT, st->uneu, st->tneu, st->cnt_cell, st->pib, st->hxx, st->hxy, st->hyy, st->fluxb, st->pf0, st->gpx, st->gpy, st->wdamp, st->empty,
                    st->qa, st->qb, st->qc, st->qx, st->qy, st->pd, st->gq, st->tq_off, st->tq_len, st->tq,
                    st->fu, st->fv, st->fT, st->pout, st->fluxe, st->q, st->fz, st->pfprev, st->pfphi,
-                   su->pd_off, su->pd_face, st->bpu0, st->bpv0, su->wall, su->wf_off, su->wf_face};
+                   su->pd_off, su->pd_face, st->bpu0, st->bpv0, su->wall, su->wf_off, su->wf_face,
+                   su->uc_keep, st->uc_fit};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
     if (S->work)
@@ -1195,7 +1211,7 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     su->m = m;
     su->set = *s;
     S->nthreads = sol_threads();
-    st->want_p = 1;
+    st->want_fields = 1;
     ump_idx nc = m->ncells, nf = m->nfaces, nb = nf - m->ninternal;
     ump_status rc;
     if (!(S->work = ump_alloc_array((size_t)S->nthreads, sizeof *S->work)))
@@ -1222,8 +1238,11 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
         !(st->bpv0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
         !(st->vb = ump_alloc_array((size_t)nb, sizeof(double))))
         goto nomem;
-    if (!(st->uneu = ump_alloc_array((size_t)nb > 0 ? (size_t)nb : 1, 1)))
+    if (!(st->uneu = ump_alloc_array((size_t)nb > 0 ? (size_t)nb : 1, 1)) ||
+        !(su->uc_keep = ump_alloc_array((size_t)nc, 1)) || !(st->uc_fit = ump_alloc_array((size_t)nc, 1)))
         goto nomem;
+    for (ump_idx f = m->ninternal; f < nf; f++)
+        su->uc_keep[m->owner[f]] = 1;
     if (s->buoyant) {
         if (!T) {
             rc = UMP_FAIL(err, UMP_ERR_INPUT, "solver: a buoyant case needs the temperature field T");
@@ -1403,7 +1422,7 @@ void sol_set_pressure(sol *S, const double *p)
     memcpy(S->st.pout, p, (size_t)S->su.m->ncells * sizeof *S->st.pout);
 }
 
-void sol_want_pressure(sol *S, int yes) { S->st.want_p = yes != 0; }
+void sol_want_fields(sol *S, int yes) { S->st.want_fields = yes != 0; }
 
 /* The mean cell extent e passed to the MLS fits as Eq. 35's Delta-bar, or,
  * with mlsSupport r > 0, the fixed support r e (passed negative, mls.h):
@@ -1492,6 +1511,11 @@ static long particle_pressure_gradient(sol *S, const double *p, const double *pf
     double *cgx = S->st.gx, *cgy = S->st.gy;
     if (aniso)
         lsq_gradient(su->g, p, cgx, cgy);
+    /* pd: some stencil holds a fixed-pressure face; else the samples are
+     * the centroids alone, in a loop without the face loop or the shift's
+     * test (a quarter of a fit's cost with them) */
+    int pd = su->pd_max > 0;
+    const double *restrict cx = m->cx, *restrict cy = m->cy;
 #pragma omp parallel num_threads(S->nthreads) reduction(+ : fb)
     {
         sol_work *w = &S->work[thread_id()];
@@ -1505,18 +1529,39 @@ static long particle_pressure_gradient(sol *S, const double *p, const double *pf
             }
             /* samples: (h, k) offsets, pv the pressures */
             int nn = 0;
-            for (ump_idx a = su->st_off[c]; a < su->st_off[c + 1]; a++) {
-                ump_idx q = su->st_cell[a];
-                double sx = su->st_sx ? su->st_sx[a] : 0, sy = su->st_sy ? su->st_sy[a] : 0;
-                w->h[nn] = m->cx[q] + sx - x;
-                w->k[nn] = m->cy[q] + sy - y;
-                w->pv[nn++] = p[q];
-                for (ump_idx d = su->pd_off[q]; d < su->pd_off[q + 1]; d++) {
-                    ump_idx f = su->pd_face[d];
-                    w->h[nn] = m->fx[f] + sx - x;
-                    w->k[nn] = m->fy[f] + sy - y;
-                    w->pv[nn++] = pfv[f];
+            ump_idx a0 = su->st_off[c], a1 = su->st_off[c + 1];
+            if (pd) {
+                for (ump_idx a = a0; a < a1; a++) {
+                    ump_idx q = su->st_cell[a];
+                    double sx = su->st_sx ? su->st_sx[a] : 0, sy = su->st_sy ? su->st_sy[a] : 0;
+                    w->h[nn] = m->cx[q] + sx - x;
+                    w->k[nn] = m->cy[q] + sy - y;
+                    w->pv[nn++] = p[q];
+                    for (ump_idx d = su->pd_off[q]; d < su->pd_off[q + 1]; d++) {
+                        ump_idx f = su->pd_face[d];
+                        w->h[nn] = m->fx[f] + sx - x;
+                        w->k[nn] = m->fy[f] + sy - y;
+                        w->pv[nn++] = pfv[f];
+                    }
                 }
+            } else { /* the centroids alone, the same offsets (no shift: + 0) */
+                const ump_idx *restrict sc = su->st_cell + a0;
+                const double *restrict ssx = su->st_sx ? su->st_sx + a0 : NULL;
+                const double *restrict ssy = su->st_sy ? su->st_sy + a0 : NULL;
+                double *restrict h = w->h, *restrict k = w->k, *restrict pv = w->pv;
+                nn = (int)(a1 - a0);
+                if (ssx)
+                    for (int j = 0; j < nn; j++) {
+                        h[j] = cx[sc[j]] + ssx[j] - x;
+                        k[j] = cy[sc[j]] + ssy[j] - y;
+                        pv[j] = p[sc[j]];
+                    }
+                else
+                    for (int j = 0; j < nn; j++) {
+                        h[j] = cx[sc[j]] - x;
+                        k[j] = cy[sc[j]] - y;
+                        pv[j] = p[sc[j]];
+                    }
             }
             double ex = mls_extent(su, m->dx[c]), ey = mls_extent(su, m->dy[c]);
             if (mls_gradient(w->h, w->k, w->pv, nn, ex, ey, &gxo[i], &gyo[i], NULL) != MLS_QUADRATIC)
@@ -2391,7 +2436,14 @@ static void face_extents(const mesh2d *m, ump_idx c, ump_idx fa, double *mdx, do
  * particles' at the face centres, as fluxes u_f . A_f into flux[] (faces
  * whose velocity is prescribed excepted: the caller sets those), and, when
  * uc is given, at the centroids into uc, vc: one gather per cell serves its
- * centroid and the faces it owns. */
+ * centroid and the faces it owns. The centroid values are u*_P of Eq. 36,
+ * which the step needs only in some cells: in every cell at the steps that
+ * compute the fields written (they are the written U), with refill u_P
+ * (the value of every refilled cell) and with anisotropicCells
+ * (bound_cell_velocity); else in the owners of boundary faces
+ * (su->uc_keep) and where a refill may fall back to u_P (st->uc_fit). A
+ * centroid fit is a third of this stage on quadrilaterals and two fifths
+ * on triangles (one fit beside 2 and 1.5 owned faces). */
 static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux, double *uc, double *vc)
 {
     const sol_setup *su = &S->su;
@@ -2399,6 +2451,7 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux
     const mesh2d *m = su->m;
     ump_idx nc = m->ncells, ni = m->ninternal;
     const double *f[2] = {fu, fv}, *g[2] = {st->bp.u, st->bp.v};
+    int all = st->want_fields || su->set.refill != SOL_REFILL_CARRIED || su->set.anisotropic;
 #pragma omp parallel num_threads(S->nthreads)
     {
         sol_work *w = &S->work[thread_id()];
@@ -2416,6 +2469,17 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux
             double uv[2];
             gather_values(w, cnt, 2, f, g);
             if (uc) {
+                /* refill_carried falls back to u_P only where no fluid
+                 * particle is in the stencil at r^{n+1}: these fits make it
+                 * exact wherever fewer than SOL_FEW_FLUID are at r*, a
+                 * criterion that does not depend on want_fields, so that
+                 * the solution does not depend on the steps written */
+                size_t nfl = 0;
+                for (size_t j = 0; j < cnt; j++)
+                    nfl += w->ref[j] >= 0;
+                st->uc_fit[c] = su->uc_keep[c] || nfl < SOL_FEW_FLUID;
+            }
+            if (uc && (all || st->uc_fit[c])) {
                 /* anisotropicCells: the centroid velocity (Eq. 32; Eq.
                  * 36's u*_P, the written U) within its samples' range
                  * itself, not widened by the margin (docs/METHOD.md section
@@ -3110,6 +3174,15 @@ static ump_status refill_carried(void *vctx, const unsigned char *alive, ump_err
             gather_values(w, cnt, nv, f, g);
             double o[SOL_MAX_VALUES];
             if (!refill_value(su, w, cnt, c, nv, o)) {
+                if (!st->uc_fit[c]) { /* mls_to_mesh: u_P may not be this step's */
+                    e = (ump_err){0};
+                    work_fail(w, UMP_FAIL(&e, UMP_ERR_INPUT,
+                                          "solver: cell %ld at (%g %g) has no fluid particle left in its stencil "
+                                          "after the step, and had %d or more at r* (Step 8): the step is too "
+                                          "large for the particles; reduce deltaT or maxCo",
+                                          (long)c, m->cx[c], m->cy[c], SOL_FEW_FLUID), &e);
+                    continue;
+                }
                 o[0] = st->uc[c];
                 o[1] = st->vc[c];
                 o[2] = nv > 2 ? st->Tc[c] : 0;
@@ -3237,7 +3310,7 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     stage_mark(&clk, stats, SOL_STAGE_BALANCE);
     /* q: for the pressure written, and with walls_zero_gradient for the
      * correction (transpose_q) at every step */
-    int split = (st->want_p || walls_zero_gradient(su)) && st->have_flux;
+    int split = (st->want_fields || walls_zero_gradient(su)) && st->have_flux;
     st->split = split;
     if (split) {
         interpolation_error(S, dt);
@@ -3268,13 +3341,13 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     stats->p_solver = lsolve_name(S->su.pe->fac);
     stage_mark(&clk, stats, SOL_STAGE_PPE);
     UMP_CALL(step10_correct(S, dt, stats, err));
-    if (st->want_p) {
+    if (st->want_fields) {
         ump_idx nc = su->m->ncells;
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
         for (ump_idx c = 0; c < nc; c++)
             st->pout[c] = split ? st->p[c] - st->q[c] : st->p[c];
     }
-    stats->p_written = st->want_p;
+    stats->fields_written = st->want_fields;
     st->have_flux = 1;
     stage_mark(&clk, stats, SOL_STAGE_CORRECT);
     UMP_CALL(step11_manage(S, stats, err));

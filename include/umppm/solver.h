@@ -129,7 +129,9 @@ typedef struct sol_stats {
     double p_res0, p_res;        /* PPE: OpenFOAM-normalised residual before and
                                     after the direct solve */
     const char *p_solver;        /* the direct solver's name (UMFPACK, ...) */
-    int p_written;               /* this step computed the pressure written (sol_cell_p) */
+    int fields_written;          /* this step computed the fields written: the
+                                    pressure (sol_cell_p) and the cell velocity
+                                    of every cell (sol_cell_u) */
     int lap_fallbacks;           /* Laplacian rows that fell back to another
                                     form (a singular fit: CPM4 to CPM to MPS,
                                     images or d/dn rows); a particle can
@@ -176,11 +178,15 @@ ump_status sol_set_particles(sol *S, size_t n, const double *x, const double *y,
                              size_t *dropped, ump_err *err);
 /* Set the cell pressure (restart) before the first step. */
 void sol_set_pressure(sol *S, const double *p);
-/* Whether the coming steps compute the pressure written, sol_cell_p
- * (default yes). It costs one more MLS pass over the faces and one more
- * solve per step and changes nothing else: a caller that writes the
- * pressure only at some steps asks for it before those. */
-void sol_want_pressure(sol *S, int yes);
+/* Whether the coming steps compute the fields written (default yes): the
+ * pressure written, sol_cell_p (one more MLS pass over the faces and one
+ * more solve per step), and the cell velocity u_P of Eq. 36 in every cell,
+ * sol_cell_u (an MLS fit per cell). It changes nothing else. Without it
+ * sol_cell_u is current only in the owners of boundary faces (what a
+ * patch's face values read) and in cells whose refill may need it; a
+ * caller that writes the fields only at some steps asks for them before
+ * those. */
+void sol_want_fields(sol *S, int yes);
 
 /* The new time t of the coming step: evaluates the boundary conditions that
  * are functions of time (uniformFixedValue of U or p, flowRateInletVelocity),
@@ -197,11 +203,13 @@ ump_status sol_step(sol *S, double dt, sol_stats *st, ump_err *err);
 void sol_courant(const sol *S, double dt, double *mean, double *max);
 
 /* Current fields: cell velocity (Eq. 36) and pressure [ncells], face values
- * for boundary faces (velocity per 2-D boundary face). Borrowed. */
+ * for boundary faces (velocity per 2-D boundary face). Borrowed. The cell
+ * velocity is current in every cell after a step that computed the fields
+ * written (sol_want_fields), else only in the owners of boundary faces. */
 const double *sol_cell_u(const sol *S);
 const double *sol_cell_v(const sol *S);
 /* The pressure written (kinematic): the solution of the PPE of the last
- * step that computed it (sol_want_pressure; sol_stats.p_written) less the
+ * step that computed it (sol_want_fields; sol_stats.fields_written) less the
  * potential of the particle-to-mesh interpolation error (docs/METHOD.md
  * section 8, "The pressure written"); the first step after the start has
  * no previous corrected fluxes and writes the PPE's solution. */
