@@ -216,6 +216,7 @@ typedef struct sol_work {
         double *gpos[PART_DIM];
     };
     ump_idx *ref;
+    size_t nfluid;             /* fluid particles among the gathered (gather_cell) */
     union {                    /* offsets from the target */
         struct { double *h, *k; };
         double *off[PART_DIM];
@@ -520,7 +521,8 @@ static ump_status work_collect(sol *S, sol_stats *st, ump_err *err)
 
 /* Gather the fluid and boundary particles of cell c's stencil (bins must be
  * current) into w->px, w->py, w->ref, run by run of the stencil (per run:
- * its fluid particles, then its boundary particles); returns the count. */
+ * its fluid particles, then its boundary particles); returns the count,
+ * and that of the fluid particles in w->nfluid. */
 static ump_status gather_cell(const sol_setup *su, const sol_state *st, sol_work *w, ump_idx c, size_t *n,
                               ump_err *err)
 {
@@ -530,13 +532,15 @@ static ump_status gather_cell(const sol_setup *su, const sol_state *st, sol_work
     const size_t *bidx = st->bins.idx;
     size_t cnt = 0;
     ump_idx r0 = su->ru_off[c], r1 = su->ru_off[c + 1];
-    size_t need = 0;
+    size_t nfl = 0, nbp = 0;
     for (ump_idx r = r0; r < r1; r++) {
         ump_idx q0 = su->ru_q0[r], q1 = su->ru_q1[r];
-        need += (size_t)(boff[q1] - boff[q0]) + (size_t)(bpoff[q1] - bpoff[q0]);
+        nfl += (size_t)(boff[q1] - boff[q0]);
+        nbp += (size_t)(bpoff[q1] - bpoff[q0]);
     }
-    if (need > w->cap)
-        UMP_CALL(work_reserve(w, need, err));
+    w->nfluid = nfl;
+    if (nfl + nbp > w->cap)
+        UMP_CALL(work_reserve(w, nfl + nbp, err));
     double *restrict px = w->px, *restrict py = w->py;
     ump_idx *restrict ref = w->ref;
     for (ump_idx r = r0; r < r1; r++) {
@@ -2474,10 +2478,7 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux
                  * exact wherever fewer than SOL_FEW_FLUID are at r*, a
                  * criterion that does not depend on want_fields, so that
                  * the solution does not depend on the steps written */
-                size_t nfl = 0;
-                for (size_t j = 0; j < cnt; j++)
-                    nfl += w->ref[j] >= 0;
-                st->uc_fit[c] = su->uc_keep[c] || nfl < SOL_FEW_FLUID;
+                st->uc_fit[c] = su->uc_keep[c] || w->nfluid < SOL_FEW_FLUID;
             }
             if (uc && (all || st->uc_fit[c])) {
                 /* anisotropicCells: the centroid velocity (Eq. 32; Eq.
@@ -3064,9 +3065,12 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
         double xj = w->px[e], yj = w->py[e];
         for (int at = 0; at < 2; at++) { /* f_j(x_c), f_j(x_j) */
             double x = at ? xj : xc, y = at ? yj : yc;
+            const double *restrict px = w->px, *restrict py = w->py;
+            double *restrict h = w->h, *restrict k = w->k;
+#pragma omp simd
             for (size_t i = 0; i < e; i++) {
-                w->h[i] = w->px[i] - x;
-                w->k[i] = w->py[i] - y;
+                h[i] = px[i] - x;
+                k[i] = py[i] - y;
             }
             if (mls_weights(w->h, w->k, (int)e, mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), w->c0, NULL, NULL,
                             NULL) != MLS_QUADRATIC)
