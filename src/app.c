@@ -568,15 +568,19 @@ static double speed_scale(const app *a)
 }
 
 /* After a step: every particle velocity finite and within a->u_bound,
- * every cell's p and T finite, and, after a step that computed the fields
- * written (cells: nonzero), every cell velocity within the bound too (on
- * the other steps only the owners of boundary faces have a current one,
- * solver.h); else an error naming the cell (or particle), the value, the
- * bound and the time. */
-static ump_status check_divergence(const app *a, const char *tname, int cells, ump_err *err)
+ * every cell's p and T finite, and the velocity of every cell that the
+ * step computed (sol_cell_u_current: every cell at the steps that compute
+ * the fields written, else the owners of boundary faces and the cells
+ * Step 8 fits at every step) within the bound too; else an error naming
+ * the cell (or particle), the value, the bound and the time. A cell
+ * velocity is an MLS fit of the particles' (boundedFits: within their
+ * range and a margin), so a cell beyond the bound has particles beyond it,
+ * which every step checks. */
+static ump_status check_divergence(const app *a, const char *tname, ump_err *err)
 {
     const double *u = sol_cell_u(a->S), *v = sol_cell_v(a->S), *p = sol_cell_p_projection(a->S);
     const double *T = sol_cell_T(a->S);
+    const unsigned char *cur = sol_cell_u_current(a->S);
     const mesh2d *m = a->m;
     const double b2 = a->u_bound * a->u_bound;
     char why[160];
@@ -585,7 +589,7 @@ static ump_status check_divergence(const app *a, const char *tname, int cells, u
     else
         snprintf(why, sizeof why, "100 x the speed scale %g; UMPPM maxVelocity sets it", a->u_scale);
     for (ump_idx c = 0; c < m->ncells; c++) {
-        double s2 = cells ? u[c] * u[c] + v[c] * v[c] : 0.0;
+        double s2 = !cur || cur[c] ? u[c] * u[c] + v[c] * v[c] : 0.0;
         if (!(s2 <= b2))
             return UMP_FAIL(err, UMP_ERR_INPUT, "%s: the solution diverged at time %s: |U| = %g in cell %ld at "
                             "(%g %g) exceeds the bound %g (%s); time %s is not written; reduce deltaT or maxCo",
@@ -1301,10 +1305,12 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
                    "timeNames at time %s\n", t.precision, t.name);
         printf("Time = %s\n\n", t.name);
         /* the fields written cost a pass of their own (solver.h): only at
-         * the steps that write them, feed a function object with p, or may
-         * stop on a signal (the function objects read the velocity of
-         * boundary faces only, which every step computes) */
-        sol_want_fields(a.S, t.write_time || functions_read_p(&a, &t, step + 1) || stopsig_pending());
+         * the steps that write them, feed a function object with p, may
+         * stop on a signal, or end the run (a signal during the last step
+         * writes it) (the function objects read the velocity of boundary
+         * faces only, which every step computes) */
+        sol_want_fields(a.S, t.write_time || functions_read_p(&a, &t, step + 1) || stopsig_pending() ||
+                                 !rt_running(&t));
         sol_stats st;
         if ((rc = sol_step(a.S, t.delta_t, &st, err)) != UMP_OK)
             goto done;
@@ -1335,7 +1341,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         printf("time step continuity errors : sum local = %g, global = %g, cumulative = %g\n",
                st.cont_local, st.cont_global, cont_cumulative);
         printf("time step continuity errors : max = %g\n", st.cont_max);
-        if ((rc = check_divergence(&a, t.name, st.fields_written, err)) != UMP_OK)
+        if ((rc = check_divergence(&a, t.name, err)) != UMP_OK)
             goto done;
         step++;
         int sig = stopsig_pending();

@@ -198,11 +198,6 @@ typedef struct sol_setup {
  * converged one, 0.2 let the cavity graded 10:1 toward its walls reach
  * 1.11x the lid speed */
 #define SOL_REFILL_NOISE 0.15
-/* Step 8 fits u*_P at the centroid of a cell with fewer fluid particles
- * than this in its stencil at r* at every step (st->uc_fit): a refill
- * falls back to u_P only where none is left at r^{n+1}, and between r* and
- * r^{n+1} a particle moves by dt^2 |grad p| */
-#define SOL_FEW_FLUID 3
 /* The interpolation error's pressure by the transpose of the fits
  * (transpose_q): F of the 2 x 2 system sum_f |c_fj| n_f n_f^T + F I of a
  * particle, against the O(1) of a particle that enters its cell's face
@@ -216,7 +211,6 @@ typedef struct sol_work {
         double *gpos[PART_DIM];
     };
     ump_idx *ref;
-    size_t nfluid;             /* fluid particles among the gathered (gather_cell) */
     union {                    /* offsets from the target */
         struct { double *h, *k; };
         double *off[PART_DIM];
@@ -241,6 +235,8 @@ typedef struct sol_work {
 typedef struct sol_state {
     part_set *P;
     part_bins bins;
+    part_bins bins_star;       /* the bins at r* of Step 8, kept through Step 11
+                                  (refill_carried's u_P of a cell not fitted) */
     part_boundary bp;
     /* mesh fields */
     double *p, *uc, *vc, *usc, *vsc, *flux, *gflux, *gx, *gy, *div;
@@ -269,11 +265,10 @@ typedef struct sol_state {
     double *pout, *fluxe, *q, *fz;
     int want_fields;           /* this step computes pout and u_P in every cell
                                   (sol_want_fields) */
-    unsigned char *uc_fit;     /* [ncells] Step 8 fitted u*_P of this cell
-                                  whatever want_fields: uc_keep, or fewer than
-                                  SOL_FEW_FLUID fluid particles in its stencil
-                                  at r* (the only cells whose refill can fall
-                                  back to u_P, refill_carried) */
+    int uc_all;                /* the last Step 8 fitted u*_P in every cell */
+    double *bpus, *bpvs;       /* [nb] the boundary particles' values in Step
+                                  8's fit when shifted (bp_shifted) */
+    int bp_shifted;
     int split;                 /* this step has computed q */
     /* anisotropicCells (transpose_q): p_d for the particles' Eq. 10
        [ncells], grad q . A_f [nfaces], and the face fits' coefficients of
@@ -288,6 +283,7 @@ typedef struct sol_state {
     /* per particle */
     size_t wcap;
     double *x0, *y0, *us, *vs, *rhs_u, *rhs_v, *Ts, *rhs_T;
+    double *xs, *ys;           /* r* of Step 8, kept through Step 11 (bins_star) */
     double *gpx, *gpy;         /* a pressure gradient at the particles */
     double *wdamp;             /* share of the correction a particle keeps next
                                   to a wall (step6_rows, walls_zero_gradient) */
@@ -427,6 +423,7 @@ void sol_free(sol **pS)
     sol_state *st = &S->st;
     part_free(&st->P);
     part_bins_free(&st->bins);
+    part_bins_free(&st->bins_star);
     part_boundary_free(&st->bp);
     lsq_free(&su->g);
     lsq_free(&su->gw);
@@ -446,7 +443,7 @@ void sol_free(sol **pS)
                    st->qa, st->qb, st->qc, st->qx, st->qy, st->pd, st->gq, st->tq_off, st->tq_len, st->tq,
                    st->fu, st->fv, st->fT, st->pout, st->fluxe, st->q, st->fz, st->pfprev, st->pfphi,
                    su->pd_off, su->pd_face, st->bpu0, st->bpv0, su->wall, su->wf_off, su->wf_face,
-                   su->uc_keep, st->uc_fit};
+                   su->uc_keep, st->bpus, st->bpvs, st->xs, st->ys};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
     if (S->work)
@@ -521,26 +518,26 @@ static ump_status work_collect(sol *S, sol_stats *st, ump_err *err)
 
 /* Gather the fluid and boundary particles of cell c's stencil (bins must be
  * current) into w->px, w->py, w->ref, run by run of the stencil (per run:
- * its fluid particles, then its boundary particles); returns the count,
- * and that of the fluid particles in w->nfluid. */
-static ump_status gather_cell(const sol_setup *su, const sol_state *st, sol_work *w, ump_idx c, size_t *n,
-                              ump_err *err)
+ * its fluid particles, then its boundary particles); returns the count.
+ * gather_from: the fluid particles at (X, Y) in bins; gather_cell: the
+ * particles and bins of the state. */
+static inline __attribute__((always_inline)) ump_status gather_from(const sol_setup *su, const double *restrict X,
+                                                                    const double *restrict Y, const part_bins *bins,
+                                                                    const part_boundary *bp, sol_work *w, ump_idx c,
+                                                                    size_t *n, ump_err *err)
 {
-    const double *restrict X = st->P->x, *restrict Y = st->P->y, *restrict BX = st->bp.x,
-                           *restrict BY = st->bp.y;
-    const ump_idx *boff = st->bins.off, *bpoff = st->bp.off, *bpidx = st->bp.idx;
-    const size_t *bidx = st->bins.idx;
+    const double *restrict BX = bp->x, *restrict BY = bp->y;
+    const ump_idx *boff = bins->off, *bpoff = bp->off, *bpidx = bp->idx;
+    const size_t *bidx = bins->idx;
     size_t cnt = 0;
     ump_idx r0 = su->ru_off[c], r1 = su->ru_off[c + 1];
-    size_t nfl = 0, nbp = 0;
+    size_t need = 0;
     for (ump_idx r = r0; r < r1; r++) {
         ump_idx q0 = su->ru_q0[r], q1 = su->ru_q1[r];
-        nfl += (size_t)(boff[q1] - boff[q0]);
-        nbp += (size_t)(bpoff[q1] - bpoff[q0]);
+        need += (size_t)(boff[q1] - boff[q0]) + (size_t)(bpoff[q1] - bpoff[q0]);
     }
-    w->nfluid = nfl;
-    if (nfl + nbp > w->cap)
-        UMP_CALL(work_reserve(w, nfl + nbp, err));
+    if (need > w->cap)
+        UMP_CALL(work_reserve(w, need, err));
     double *restrict px = w->px, *restrict py = w->py;
     ump_idx *restrict ref = w->ref;
     for (ump_idx r = r0; r < r1; r++) {
@@ -563,6 +560,12 @@ static ump_status gather_cell(const sol_setup *su, const sol_state *st, sol_work
     }
     *n = cnt;
     return UMP_OK;
+}
+
+static ump_status gather_cell(const sol_setup *su, const sol_state *st, sol_work *w, ump_idx c, size_t *n,
+                              ump_err *err)
+{
+    return gather_from(su, st->P->x, st->P->y, &st->bins, &st->bp, w, c, n, err);
 }
 
 /* Offsets of the gathered samples from (x, y) into w->h, w->k, w->sref,
@@ -1086,7 +1089,8 @@ static ump_status grow_particle_work(sol_state *st, size_t n, ump_err *err)
         return UMP_OK;
     size_t c = n > 2 * st->wcap ? n : 2 * st->wcap;
     double **arr[] = {&st->x0, &st->y0, &st->us, &st->vs, &st->rhs_u, &st->rhs_v, &st->Ts, &st->rhs_T,
-                      &st->gpx, &st->gpy, &st->wdamp, &st->qa, &st->qb, &st->qc, &st->qx, &st->qy};
+                      &st->gpx, &st->gpy, &st->wdamp, &st->qa, &st->qb, &st->qc, &st->qx, &st->qy,
+                      &st->xs, &st->ys};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++) {
         double *q = ump_realloc_array(*arr[i], c, sizeof(double));
         if (!q)
@@ -1216,6 +1220,7 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     su->set = *s;
     S->nthreads = sol_threads();
     st->want_fields = 1;
+    st->uc_all = 1; /* u_P from the U field read */
     ump_idx nc = m->ncells, nf = m->nfaces, nb = nf - m->ninternal;
     ump_status rc;
     if (!(S->work = ump_alloc_array((size_t)S->nthreads, sizeof *S->work)))
@@ -1243,7 +1248,8 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
         !(st->vb = ump_alloc_array((size_t)nb, sizeof(double))))
         goto nomem;
     if (!(st->uneu = ump_alloc_array((size_t)nb > 0 ? (size_t)nb : 1, 1)) ||
-        !(su->uc_keep = ump_alloc_array((size_t)nc, 1)) || !(st->uc_fit = ump_alloc_array((size_t)nc, 1)))
+        !(su->uc_keep = ump_alloc_array((size_t)nc, 1)) || !(st->bpus = ump_alloc_array((size_t)nb, sizeof(double))) ||
+        !(st->bpvs = ump_alloc_array((size_t)nb, sizeof(double))))
         goto nomem;
     for (ump_idx f = m->ninternal; f < nf; f++)
         su->uc_keep[m->owner[f]] = 1;
@@ -2445,9 +2451,10 @@ static void face_extents(const mesh2d *m, ump_idx c, ump_idx fa, double *mdx, do
  * compute the fields written (they are the written U), with refill u_P
  * (the value of every refilled cell) and with anisotropicCells
  * (bound_cell_velocity); else in the owners of boundary faces
- * (su->uc_keep) and where a refill may fall back to u_P (st->uc_fit). A
- * centroid fit is a third of this stage on quadrilaterals and two fifths
- * on triangles (one fit beside 2 and 1.5 owned faces). */
+ * (su->uc_keep). A refill that falls back to u_P elsewhere fits it then,
+ * from the particles at r* Step 8 had (refill_up). A centroid fit is a
+ * third of this stage on quadrilaterals and two fifths on triangles (one
+ * fit beside 2 and 1.5 owned faces). */
 static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux, double *uc, double *vc)
 {
     const sol_setup *su = &S->su;
@@ -2456,6 +2463,8 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux
     ump_idx nc = m->ncells, ni = m->ninternal;
     const double *f[2] = {fu, fv}, *g[2] = {st->bp.u, st->bp.v};
     int all = st->want_fields || su->set.refill != SOL_REFILL_CARRIED || su->set.anisotropic;
+    if (uc)
+        st->uc_all = all;
 #pragma omp parallel num_threads(S->nthreads)
     {
         sol_work *w = &S->work[thread_id()];
@@ -2472,15 +2481,7 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux
             }
             double uv[2];
             gather_values(w, cnt, 2, f, g);
-            if (uc) {
-                /* refill_carried falls back to u_P only where no fluid
-                 * particle is in the stencil at r^{n+1}: these fits make it
-                 * exact wherever fewer than SOL_FEW_FLUID are at r*, a
-                 * criterion that does not depend on want_fields, so that
-                 * the solution does not depend on the steps written */
-                st->uc_fit[c] = su->uc_keep[c] || w->nfluid < SOL_FEW_FLUID;
-            }
-            if (uc && (all || st->uc_fit[c])) {
+            if (uc && (all || su->uc_keep[c])) {
                 /* anisotropicCells: the centroid velocity (Eq. 32; Eq.
                  * 36's u*_P, the written U) within its samples' range
                  * itself, not widened by the margin (docs/METHOD.md section
@@ -2579,8 +2580,13 @@ static void step8_mls_velocity(sol *S)
      * (Poiseuille, Re 10: p 0 instead of 0.06 in the last column). */
     int moved = shift_open_boundary(S, st->us, st->vs);
     mls_to_mesh(S, st->us, st->vs, st->flux, st->usc, st->vsc);
-    if (moved)
+    st->bp_shifted = moved;
+    if (moved) { /* the values of this fit, for refill_up */
+        size_t nb = (size_t)st->bp.n;
+        memcpy(st->bpus, st->bp.u, nb * sizeof *st->bpus);
+        memcpy(st->bpvs, st->bp.v, nb * sizeof *st->bpvs);
         restore_open_boundary(S);
+    }
 }
 
 /* The fixed face values of the pressure the step's PPE solves for: pi's
@@ -2970,6 +2976,9 @@ static ump_status step10_correct(sol *S, double dt, sol_stats *stats, ump_err *e
             P->v[i] += kw[i] * st->qy[i];
         }
     }
+    /* r* and its bins (Step 8's) are kept for refill_up */
+    memcpy(st->xs, P->x, n * sizeof *st->xs);
+    memcpy(st->ys, P->y, n * sizeof *st->ys);
     /* r^{n+1} = r^n + dt u^{n+1} (Eq. 7) */
     move_particles(S, P->u, P->v, dt, &stats->walled);
     if (th > 0) /* the face values that belong to p^{n+1/2}, the next step's pold */
@@ -3138,7 +3147,38 @@ static int refill_value(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c,
 typedef struct refill_ctx {
     sol *S;
     sol_stats *stats;
+    double dt;
 } refill_ctx;
+
+/* u_P of Eq. 36 in cell c (u*_P - dt grad p_P), for a refill that falls
+ * back to it in a cell Step 8 did not fit (mls_to_mesh): the same fit from
+ * the same samples, the particles at r* (st->xs, ys in st->bins_star, the
+ * numbering before Step 11's compaction, as st->us, vs) and the boundary
+ * particles with Step 8's values, so the value is the one Step 8 would
+ * have given, to the bit, and the solution does not depend on the steps
+ * that compute the fields written. */
+static ump_status refill_up(const sol *S, sol_work *w, ump_idx c, double dt, double *u, double *v, ump_err *err)
+{
+    const sol_setup *su = &S->su;
+    const sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    if (st->uc_all || su->uc_keep[c]) {
+        *u = st->uc[c];
+        *v = st->vc[c];
+        return UMP_OK;
+    }
+    size_t cnt;
+    UMP_CALL(gather_from(su, st->xs, st->ys, &st->bins_star, &st->bp, w, c, &cnt, err));
+    const double *f[2] = {st->us, st->vs};
+    const double *g[2] = {st->bp_shifted ? st->bpus : st->bp.u, st->bp_shifted ? st->bpvs : st->bp.v};
+    gather_values(w, cnt, 2, f, g);
+    double uv[2]; /* as mls_to_mesh: not anisotropic (uc_all), so the fit's margin */
+    mls_fit_values(w, cnt, m->cx[c], m->cy[c], mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), -1, 2,
+                   w->fit_margin, uv);
+    *u = uv[0] - dt * st->gx[c]; /* as step10_correct */
+    *v = uv[1] - dt * st->gy[c];
+    return UMP_OK;
+}
 
 /* part_refill_fn of part_manage_refill: values for the cells that no
  * surviving particle occupies, from every particle before the deletion. */
@@ -3178,17 +3218,10 @@ static ump_status refill_carried(void *vctx, const unsigned char *alive, ump_err
             gather_values(w, cnt, nv, f, g);
             double o[SOL_MAX_VALUES];
             if (!refill_value(su, w, cnt, c, nv, o)) {
-                if (!st->uc_fit[c]) { /* mls_to_mesh: u_P may not be this step's */
-                    e = (ump_err){0};
-                    work_fail(w, UMP_FAIL(&e, UMP_ERR_INPUT,
-                                          "solver: cell %ld at (%g %g) has no fluid particle left in its stencil "
-                                          "after the step, and had %d or more at r* (Step 8): the step is too "
-                                          "large for the particles; reduce deltaT or maxCo",
-                                          (long)c, m->cx[c], m->cy[c], SOL_FEW_FLUID), &e);
+                if ((rc = refill_up(S, w, c, rc0->dt, &o[0], &o[1], &e)) != UMP_OK) {
+                    work_fail(w, rc, &e);
                     continue;
                 }
-                o[0] = st->uc[c];
-                o[1] = st->vc[c];
                 o[2] = nv > 2 ? st->Tc[c] : 0;
             }
             st->fu[c] = o[0];
@@ -3200,7 +3233,7 @@ static ump_status refill_carried(void *vctx, const unsigned char *alive, ump_err
     return work_collect(S, rc0->stats, err);
 }
 
-static ump_status step11_manage(sol *S, sol_stats *stats, ump_err *err)
+static ump_status step11_manage(sol *S, double dt, sol_stats *stats, ump_err *err)
 {
     const sol_setup *su = &S->su;
     sol_state *st = &S->st;
@@ -3209,6 +3242,11 @@ static ump_status step11_manage(sol *S, sol_stats *stats, ump_err *err)
     size_t before = P->n;
     part_compact(P, st->keep);
     stats->left = before - P->n;
+    /* Step 8's bins (r*) to bins_star, for refill_up; the new ones are
+     * built in the other's storage */
+    part_bins t = st->bins;
+    st->bins = st->bins_star;
+    st->bins_star = t;
     UMP_CALL(part_bins_build(&st->bins, m, P, err));
     if (su->set.buoyant) {
         /* Step 10: mesh temperature T_P, MLS of the particle temperatures */
@@ -3235,7 +3273,7 @@ static ump_status step11_manage(sol *S, sol_stats *stats, ump_err *err)
         UMP_CALL(work_collect(S, stats, err));
     }
     const double *fu = st->uc, *fv = st->vc, *fT = st->Tc;
-    refill_ctx rctx = {S, stats};
+    refill_ctx rctx = {S, stats, dt};
     int carried = su->set.refill == SOL_REFILL_CARRIED;
     if (carried) {
         fu = st->fu;
@@ -3354,7 +3392,7 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     stats->fields_written = st->want_fields;
     st->have_flux = 1;
     stage_mark(&clk, stats, SOL_STAGE_CORRECT);
-    UMP_CALL(step11_manage(S, stats, err));
+    UMP_CALL(step11_manage(S, dt, stats, err));
     stage_mark(&clk, stats, SOL_STAGE_MANAGE);
     continuity_courant(S, dt, stats);
     stage_mark(&clk, stats, SOL_STAGE_DIAG);
@@ -3381,6 +3419,8 @@ void sol_courant(const sol *S, double dt, double *mean, double *max)
 }
 
 const double *sol_cell_u(const sol *S) { return S->st.uc; }
+
+const unsigned char *sol_cell_u_current(const sol *S) { return S->st.uc_all ? NULL : S->su.uc_keep; }
 const double *sol_cell_v(const sol *S) { return S->st.vc; }
 const double *sol_cell_p(const sol *S) { return S->st.pout; }
 const double *sol_cell_p_projection(const sol *S) { return S->st.p; }

@@ -208,6 +208,11 @@ void sol_courant(const sol *S, double dt, double *mean, double *max);
  * written (sol_want_fields), else only in the owners of boundary faces. */
 const double *sol_cell_u(const sol *S);
 const double *sol_cell_v(const sol *S);
+/* The cells whose velocity (sol_cell_u) the last step computed: NULL if
+ * every cell (a step that computed the fields written, refill centroid,
+ * anisotropicCells, or no step yet), else a mask [ncells] that holds the
+ * owners of boundary faces and the cells Step 8 fits at every step. */
+const unsigned char *sol_cell_u_current(const sol *S);
 /* The pressure written (kinematic): the solution of the PPE of the last
  * step that computed it (sol_want_fields; sol_stats.fields_written) less the
  * potential of the particle-to-mesh interpolation error (docs/METHOD.md
