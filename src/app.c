@@ -570,12 +570,10 @@ static double speed_scale(const app *a)
 /* After a step: every particle velocity finite and within a->u_bound,
  * every cell's p and T finite, and the velocity of every cell that the
  * step computed (sol_cell_u_current: every cell at the steps that compute
- * the fields written, else the owners of boundary faces and the cells
- * Step 8 fits at every step) within the bound too; else an error naming
- * the cell (or particle), the value, the bound and the time. A cell
- * velocity is an MLS fit of the particles' (boundedFits: within their
- * range and a margin), so a cell beyond the bound has particles beyond it,
- * which every step checks. */
+ * the fields written, else the owners of boundary faces) within the bound
+ * too; else an error naming the cell (or particle), the value, the bound
+ * and the time. The other cells' velocities are not current (solver.h);
+ * Eq. 36 fits them from the particles, which every step checks. */
 static ump_status check_divergence(const app *a, const char *tname, ump_err *err)
 {
     const double *u = sol_cell_u(a->S), *v = sol_cell_v(a->S), *p = sol_cell_p_projection(a->S);

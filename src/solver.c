@@ -2977,8 +2977,10 @@ static ump_status step10_correct(sol *S, double dt, sol_stats *stats, ump_err *e
         }
     }
     /* r* and its bins (Step 8's) are kept for refill_up */
-    memcpy(st->xs, P->x, n * sizeof *st->xs);
-    memcpy(st->ys, P->y, n * sizeof *st->ys);
+    if (!st->uc_all) {
+        memcpy(st->xs, P->x, n * sizeof *st->xs);
+        memcpy(st->ys, P->y, n * sizeof *st->ys);
+    }
     /* r^{n+1} = r^n + dt u^{n+1} (Eq. 7) */
     move_particles(S, P->u, P->v, dt, &stats->walled);
     if (th > 0) /* the face values that belong to p^{n+1/2}, the next step's pold */

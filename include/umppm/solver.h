@@ -183,9 +183,8 @@ void sol_set_pressure(sol *S, const double *p);
  * more solve per step), and the cell velocity u_P of Eq. 36 in every cell,
  * sol_cell_u (an MLS fit per cell). It changes nothing else. Without it
  * sol_cell_u is current only in the owners of boundary faces (what a
- * patch's face values read) and in cells whose refill may need it; a
- * caller that writes the fields only at some steps asks for them before
- * those. */
+ * patch's face values read); a caller that writes the fields only at some
+ * steps asks for them before those. */
 void sol_want_fields(sol *S, int yes);
 
 /* The new time t of the coming step: evaluates the boundary conditions that
@@ -210,8 +209,8 @@ const double *sol_cell_u(const sol *S);
 const double *sol_cell_v(const sol *S);
 /* The cells whose velocity (sol_cell_u) the last step computed: NULL if
  * every cell (a step that computed the fields written, refill centroid,
- * anisotropicCells, or no step yet), else a mask [ncells] that holds the
- * owners of boundary faces and the cells Step 8 fits at every step. */
+ * anisotropicCells, or no step yet), else a mask [ncells] of the owners
+ * of boundary faces. */
 const unsigned char *sol_cell_u_current(const sol *S);
 /* The pressure written (kinematic): the solution of the PPE of the last
  * step that computed it (sol_want_fields; sol_stats.fields_written) less the
