@@ -2442,6 +2442,22 @@ static void face_extents(const mesh2d *m, ump_idx c, ump_idx fa, double *mdx, do
     }
 }
 
+/* u*_P of Eq. 36 at cell c's centroid (Eq. 32) from the gathered samples
+ * and their gather_values (Step 8, and refill_up, which must give the same
+ * bits). anisotropicCells: within its samples' range itself, not widened
+ * by the margin (docs/METHOD.md section 8, "Walls in the correction" (d)):
+ * next to the lid's corner of the graded cavities the fit sat at the
+ * margin's -0.25 and 1.25 x the lid speed. Not on other meshes: the
+ * elbow's outlets take u_P, and at deltaT/4 its p at t = 10 went from 0.70
+ * to 5.5 against the converged flow. */
+static void centroid_fit(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c, double uv[2])
+{
+    const mesh2d *m = su->m;
+    double cm = w->fit_margin < 0 || !su->set.anisotropic ? w->fit_margin : 0.0;
+    mls_fit_values(w, cnt, m->cx[c], m->cy[c], mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), -1, 2, cm,
+                   uv);
+}
+
 /* MLS (Eq. 32) of the particle velocities (fu, fv) and the boundary
  * particles' at the face centres, as fluxes u_f . A_f into flux[] (faces
  * whose velocity is prescribed excepted: the caller sets those), and, when
@@ -2482,17 +2498,7 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux
             double uv[2];
             gather_values(w, cnt, 2, f, g);
             if (uc && (all || su->uc_keep[c])) {
-                /* anisotropicCells: the centroid velocity (Eq. 32; Eq.
-                 * 36's u*_P, the written U) within its samples' range
-                 * itself, not widened by the margin (docs/METHOD.md section
-                 * 8, "Walls in the correction" (d)): next to the lid's
-                 * corner of the graded cavities the fit sat at the margin's
-                 * -0.25 and 1.25 x the lid speed. Not on other meshes: the
-                 * elbow's outlets take u_P, and at deltaT/4 its p at t = 10
-                 * went from 0.70 to 5.5 against the converged flow */
-                double cm = w->fit_margin < 0 || !su->set.anisotropic ? w->fit_margin : 0.0;
-                mls_fit_values(w, cnt, m->cx[c], m->cy[c], mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]),
-                               -1, 2, cm, uv);
+                centroid_fit(su, w, cnt, c, uv);
                 uc[c] = uv[0];
                 vc[c] = uv[1];
             }
@@ -3163,7 +3169,6 @@ static ump_status refill_up(const sol *S, sol_work *w, ump_idx c, double dt, dou
 {
     const sol_setup *su = &S->su;
     const sol_state *st = &S->st;
-    const mesh2d *m = su->m;
     if (st->uc_all || su->uc_keep[c]) {
         *u = st->uc[c];
         *v = st->vc[c];
@@ -3174,9 +3179,8 @@ static ump_status refill_up(const sol *S, sol_work *w, ump_idx c, double dt, dou
     const double *f[2] = {st->us, st->vs};
     const double *g[2] = {st->bp_shifted ? st->bpus : st->bp.u, st->bp_shifted ? st->bpvs : st->bp.v};
     gather_values(w, cnt, 2, f, g);
-    double uv[2]; /* as mls_to_mesh: not anisotropic (uc_all), so the fit's margin */
-    mls_fit_values(w, cnt, m->cx[c], m->cy[c], mls_extent(su, m->dx[c]), mls_extent(su, m->dy[c]), -1, 2,
-                   w->fit_margin, uv);
+    double uv[2];
+    centroid_fit(su, w, cnt, c, uv);
     *u = uv[0] - dt * st->gx[c]; /* as step10_correct */
     *v = uv[1] - dt * st->gy[c];
     return UMP_OK;
