@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# bench/elbowConvergence.sh [-levels 3] [-umppm "0 1"] [-work DIR] [-reference DIR]
+# bench/elbowConvergence.sh [-levels 3] [-umppm "0 1"] [-deltaT "DT ..."] [-work DIR] [-reference DIR]
 # OpenFOAM's icoFoam `elbow` tutorial (unmodified: fluentMeshToFoam, its
 # 0/, constant/, system/, t = 10) against icoFoam on the same geometry
 # refined: level L is `refineMesh -overwrite` applied L times (each splits
@@ -20,10 +20,11 @@
 # about 25 min; level 2 one minute.
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
-levels=3 umppm_levels="0 1" work="" refdir=""
+levels=3 umppm_levels="0 1" umppm_dts="" work="" refdir=""
 while [ $# -gt 0 ]; do
     case $1 in
-    -levels) levels=$2 ;; -umppm) umppm_levels=$2 ;; -work) work=$2 ;; -reference) refdir=$2 ;;
+    -levels) levels=$2 ;; -umppm) umppm_levels=$2 ;; -deltaT) umppm_dts=$2 ;; -work) work=$2 ;;
+    -reference) refdir=$2 ;;
     *) echo "unknown option $1" >&2; exit 1 ;;
     esac
     shift 2
@@ -59,7 +60,7 @@ for L in $(seq 0 "$levels"); do
     run "$d" icoFoam
 done
 for L in $umppm_levels; do
-    for dt in 0.05 "$(awk -v L="$L" 'BEGIN { print 0.05 / 2 ^ L }')"; do
+    for dt in ${umppm_dts:-0.05 $(awk -v L="$L" 'BEGIN { print 0.05 / 2 ^ L }')}; do
         d=$work/umppm$L-dt$dt
         [ -d "$d" ] && [ -f "$d/10/U" ] && continue
         rm -rf "$d" && cp -r "$work/mesh$L" "$d"
