@@ -102,18 +102,22 @@ if "$UMPPMFOAM" -case "$e" > "$e/log.umppmFoam" 2>&1; then
             "$e/conv/10/"
     mkdir -p "$e/ico" && cp -r "$e/0" "$e/constant" "$e/system" "$e/ico/"
     declare -A conv=([5]=0.466 [6]=2.359) # the reference's inlet p means over t = 5..10
+    # inlet_stats LOG K: mean and standard deviation of inlet-K's p in the
+    # log of postProcess patchAverage over the writes t = 5, 5.2, ..., 10
+    # ("nan nan" unless there are 26)
+    inlet_stats() {
+        sed -n 's/.*areaAverage(velocity-inlet-'"$2"') of p = //p' "$1" |
+            awk '{ s += $1; q += $1 * $1; n++ } END { if (n != 26) { print "nan nan"; exit }
+                   m = s / n; v = q / n - m * m; print m, sqrt(v > 0 ? v : 0) }'
+    }
     if run_in "$e/ico" icoFoam icoFoam; then
         for k in 5 6; do
             for d in "$e" "$e/ico"; do
                 run_in "$d" "patchAverage$k" postProcess -func "patchAverage(name=velocity-inlet-$k,p)" \
                     -time '5:10' || fail=1
             done
-            # mean and standard deviation over the written times 5, 5.2, ..., 10
-            stats() { sed -n 's/.*areaAverage(velocity-inlet-'$k') of p = //p' "$1" |
-                awk '{ s += $1; q += $1 * $1; n++ } END { if (n != 26) { print "nan nan"; exit }
-                       m = s / n; v = q / n - m * m; print m, sqrt(v > 0 ? v : 0) }'; }
-            read -r pu su < <(stats "$e/log.patchAverage$k")
-            read -r pi si < <(stats "$e/ico/log.patchAverage$k")
+            read -r pu su < <(inlet_stats "$e/log.patchAverage$k" $k)
+            read -r pi si < <(inlet_stats "$e/ico/log.patchAverage$k" $k)
             echo "  elbow inlet-$k p over t = 5..10 (26 times): umppmFoam mean $pu (std $su), icoFoam $pi ($si)," \
                 "icoFoam on the mesh refined 3 times ${conv[$k]}"
             check_below "elbow: inlet-$k p, standard deviation over t = 5..10" "$su" 1.5
@@ -142,8 +146,7 @@ if "$UMPPMFOAM" -case "$e" > "$e/log.umppmFoam" 2>&1; then
         for k in 5 6; do
             run_in "$q" "patchAverage$k" postProcess -func "patchAverage(name=velocity-inlet-$k,p)" \
                 -time '5:10' || fail=1
-            mq=$(sed -n 's/.*areaAverage(velocity-inlet-'$k') of p = //p' "$q/log.patchAverage$k" |
-                awk '{ s += $1; n++ } END { print n == 26 ? s / n : "nan" }')
+            read -r mq _ < <(inlet_stats "$q/log.patchAverage$k" $k)
             echo "  elbow at deltaT/4: inlet-$k p over t = 5..10 (26 times): mean $mq, icoFoam refined 3 times ${conv[$k]}"
             check_range "elbow at deltaT/4: mean inlet-$k p / the refined icoFoam's" \
                 "$(awk -v a="$mq" -v b="${conv[$k]}" 'BEGIN { print a / b }')" 0.8 1.2
