@@ -159,6 +159,9 @@ static void app_free(app *a)
  * wall, inlet, outlet or symmetry plane. */
 static int app_has_boundaries(const app *a) { return a->m->nfaces > a->m->ninternal; }
 
+/* laplacian auto (the default): chosen by the mesh in settings() */
+static int app_laplacian_auto(const app *a) { return strcmp(a->um.laplacian, "auto") == 0; }
+
 static ump_status settings(const app *a, sol_settings *s, ump_err *err)
 {
     sol_default_settings(s);
@@ -174,8 +177,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
      * 0.5 over-corrects (the Re 1000 cavity's vortex too strong) and a
      * quartic row costs +37 % for no gain */
     int walled = app_has_boundaries(a);
-    s->lap.model = strcmp(a->um.laplacian, "auto") == 0 ? (walled ? LAP_CPM : LAP_CPM4)
-                                                         : (lap_model)lap_parse(a->um.laplacian);
+    s->lap.model = app_laplacian_auto(a) ? (walled ? LAP_CPM : LAP_CPM4) : (lap_model)lap_parse(a->um.laplacian);
     s->lap.re_factor = a->um.re_factor;
     s->ppe_solver = strcmp(a->um.ppe_solver, "UMFPACK") == 0 ? LSOLVE_UMFPACK
                     : strcmp(a->um.ppe_solver, "KLU") == 0   ? LSOLVE_KLU
@@ -221,7 +223,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
                         "system/fvSolution: UMPPM reFactor %g is the influence radius of laplacian MPS, PS or "
                         "IPS; laplacian %s%s has none (remove reFactor)",
                         a->um.re_factor, lap_name(s->lap.model),
-                        strcmp(a->um.laplacian, "auto") == 0 ? " (auto)" : "");
+                        app_laplacian_auto(a) ? " (auto)" : "");
     return UMP_OK;
 }
 
@@ -1228,7 +1230,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     if (a.fo.ignored[0])
         printf("--> umppmFoam Warning: function objects not run by umppmFoam (ignored): %s\n\n",
                a.fo.ignored);
-    int lap_auto = strcmp(a.um.laplacian, "auto") == 0, theta_auto = a.um.p_theta < 0;
+    int lap_auto = app_laplacian_auto(&a), theta_auto = a.um.p_theta < 0;
     printf("UMPPM: variant %s, alpha %g, laplacian %s%s", a.um.variant_star ? "UMPPM*" : "UMPPM",
            a.um.alpha, lap_name(s.lap.model), lap_auto ? " (auto)" : "");
     if (s.lap.model != LAP_CPM && s.lap.model != LAP_CPM4)

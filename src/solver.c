@@ -245,7 +245,8 @@ typedef struct sol_state {
                                   then the increment phi of this step */
     double *pf;                /* [nfaces] face pressure of fixed faces (pi) */
     double *pfprev, *pfphi;    /* [nfaces] pressureTheta > 0: pf of pold, of the increment */
-    double *bpu0, *bpv0;       /* [nb] boundary particle velocities saved during Step 8 */
+    double *bpue, *bpve;       /* [nb] the boundary particles' values in the
+                                  interpolation error's fit when shifted */
     double *pib, *fluxb, *pf0; /* buoyant (balanced): pi_b [ncells], its face fluxes
                                   [nfaces] (balance_buoyancy), and pi_d's fixed face
                                   values, zero [nfaces] (step_face_pressure) */
@@ -267,7 +268,8 @@ typedef struct sol_state {
                                   (sol_want_fields) */
     int uc_all;                /* the last Step 8 fitted u*_P in every cell */
     double *bpus, *bpvs;       /* [nb] the boundary particles' values in Step
-                                  8's fit when shifted (bp_shifted) */
+                                  8's fit when shifted (bp_shifted; kept for
+                                  refill_up) */
     int bp_shifted;
     int split;                 /* this step has computed q */
     /* anisotropicCells (transpose_q): p_d for the particles' Eq. 10
@@ -442,7 +444,7 @@ void sol_free(sol **pS)
                    st->av, st->avT, st->uneu, st->tneu, st->cnt_cell, st->pib, st->hxx, st->hxy, st->hyy, st->fluxb, st->pf0, st->gpx, st->gpy, st->wdamp, st->empty,
                    st->qa, st->qb, st->qc, st->qx, st->qy, st->pd, st->gq, st->tq_off, st->tq_len, st->tq,
                    st->fu, st->fv, st->fT, st->pout, st->fluxe, st->q, st->fz, st->pfprev, st->pfphi,
-                   su->pd_off, su->pd_face, st->bpu0, st->bpv0, su->wall, su->wf_off, su->wf_face,
+                   su->pd_off, su->pd_face, st->bpue, st->bpve, su->wall, su->wf_off, su->wf_face,
                    su->uc_keep, st->bpus, st->bpvs, st->xs, st->ys};
     for (size_t i = 0; i < sizeof arr / sizeof arr[0]; i++)
         free(arr[i]);
@@ -1243,8 +1245,8 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
         !(su->p_dir = ump_alloc_array((size_t)nf, 1)) || !(su->u_kind = ump_alloc_array((size_t)nb, 1)) ||
         !(su->p_total = ump_alloc_array((size_t)nb, 1)) || !(su->p0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
         !(st->ub = ump_alloc_array((size_t)nb, sizeof(double))) ||
-        !(st->bpu0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
-        !(st->bpv0 = ump_alloc_array((size_t)nb, sizeof(double))) ||
+        !(st->bpue = ump_alloc_array((size_t)nb, sizeof(double))) ||
+        !(st->bpve = ump_alloc_array((size_t)nb, sizeof(double))) ||
         !(st->vb = ump_alloc_array((size_t)nb, sizeof(double))))
         goto nomem;
     if (!(st->uneu = ump_alloc_array((size_t)nb > 0 ? (size_t)nb : 1, 1)) ||
@@ -2459,28 +2461,27 @@ static void centroid_fit(const sol_setup *su, sol_work *w, size_t cnt, ump_idx c
 }
 
 /* MLS (Eq. 32) of the particle velocities (fu, fv) and the boundary
- * particles' at the face centres, as fluxes u_f . A_f into flux[] (faces
- * whose velocity is prescribed excepted: the caller sets those), and, when
- * uc is given, at the centroids into uc, vc: one gather per cell serves its
+ * particles' (gu, gv) at the face centres, as fluxes u_f . A_f into flux[]
+ * (faces whose velocity is prescribed excepted: the caller sets those), and,
+ * when uc is given, at the centroids into uc, vc, in every cell or, when
+ * only is given, in the cells it marks: one gather per cell serves its
  * centroid and the faces it owns. The centroid values are u*_P of Eq. 36,
- * which the step needs only in some cells: in every cell at the steps that
- * compute the fields written (they are the written U), with refill u_P
- * (the value of every refilled cell) and with anisotropicCells
- * (bound_cell_velocity); else in the owners of boundary faces
- * (su->uc_keep). A refill that falls back to u_P elsewhere fits it then,
+ * which the step needs only in some cells (step8_mls_velocity): in every
+ * cell at the steps that compute the fields written (they are the written
+ * U), with refill u_P (the value of every refilled cell) and with
+ * anisotropicCells (bound_cell_velocity); else in the owners of boundary
+ * faces (su->uc_keep). A refill that falls back to u_P elsewhere fits it then,
  * from the particles at r* Step 8 had (refill_up). A centroid fit is a
  * third of this stage on quadrilaterals and two fifths on triangles (one
  * fit beside 2 and 1.5 owned faces). */
-static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux, double *uc, double *vc)
+static void mls_to_mesh(sol *S, const double *fu, const double *fv, const double *gu, const double *gv,
+                        double *flux, double *uc, double *vc, const unsigned char *only)
 {
     const sol_setup *su = &S->su;
-    sol_state *st = &S->st;
+    const sol_state *st = &S->st;
     const mesh2d *m = su->m;
     ump_idx nc = m->ncells, ni = m->ninternal;
-    const double *f[2] = {fu, fv}, *g[2] = {st->bp.u, st->bp.v};
-    int all = st->want_fields || su->set.refill != SOL_REFILL_CARRIED || su->set.anisotropic;
-    if (uc)
-        st->uc_all = all;
+    const double *f[2] = {fu, fv}, *g[2] = {gu, gv};
 #pragma omp parallel num_threads(S->nthreads)
     {
         sol_work *w = &S->work[thread_id()];
@@ -2497,7 +2498,7 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux
             }
             double uv[2];
             gather_values(w, cnt, 2, f, g);
-            if (uc && (all || su->uc_keep[c])) {
+            if (uc && (!only || only[c])) {
                 centroid_fit(su, w, cnt, c, uv);
                 uc[c] = uv[0];
                 vc[c] = uv[1];
@@ -2519,22 +2520,23 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, double *flux
 /* Open faces whose velocity is zeroGradient at this step (Step 8 and the
  * interpolation error): their boundary particles take the mean increment
  * fu - u^n of the owner cell's particles, so they are at the level of the
- * particle field fu being fitted. Returns 1 if any moved (the values are
- * kept in bpu0, bpv0 for restore_open_boundary), else 0. */
-static int shift_open_boundary(sol *S, const double *fu, const double *fv)
+ * particle field fu being fitted. If any face is such, returns 1 with the
+ * boundary particles' values for that fit in gu, gv (the others' copied),
+ * else 0 with gu, gv untouched: the fit takes bp's own. */
+static int shift_open_boundary(const sol *S, const double *fu, const double *fv, double *gu, double *gv)
 {
     const sol_setup *su = &S->su;
-    sol_state *st = &S->st;
+    const sol_state *st = &S->st;
     const mesh2d *m = su->m;
-    part_boundary *bp = &st->bp;
+    const part_boundary *bp = &st->bp;
     int moved = 0;
     for (ump_idx b = 0; b < bp->n; b++) {
         ump_idx f = bp->face[b], o = m->owner[f];
         if (!open_zero_gradient(su, st, f))
             continue;
-        if (!moved) { /* the first open face: keep the values to restore */
-            memcpy(st->bpu0, bp->u, (size_t)bp->n * sizeof *bp->u);
-            memcpy(st->bpv0, bp->v, (size_t)bp->n * sizeof *bp->v);
+        if (!moved) { /* the first open face: the others keep their values */
+            memcpy(gu, bp->u, (size_t)bp->n * sizeof *bp->u);
+            memcpy(gv, bp->v, (size_t)bp->n * sizeof *bp->v);
             moved = 1;
         }
         double du = 0, dv = 0;
@@ -2545,18 +2547,11 @@ static int shift_open_boundary(sol *S, const double *fu, const double *fv)
             dv += fv[i] - st->P->v[i];
         }
         if (k1 > k0) {
-            bp->u[b] += du / (double)(k1 - k0);
-            bp->v[b] += dv / (double)(k1 - k0);
+            gu[b] = bp->u[b] + du / (double)(k1 - k0);
+            gv[b] = bp->v[b] + dv / (double)(k1 - k0);
         }
     }
     return moved;
-}
-
-static void restore_open_boundary(sol *S)
-{
-    part_boundary *bp = &S->st.bp;
-    memcpy(bp->u, S->st.bpu0, (size_t)bp->n * sizeof *bp->u);
-    memcpy(bp->v, S->st.bpv0, (size_t)bp->n * sizeof *bp->v);
 }
 
 /* u* at face centres (the fluxes u*_f . A_f of Eq. 20) and centroids, by
@@ -2584,15 +2579,11 @@ static void step8_mls_velocity(sol *S)
      * it the flux out of a viscous channel lacked dt nu lap(u), and the PPE
      * left the last half cell before the outlet without its pressure drop
      * (Poiseuille, Re 10: p 0 instead of 0.06 in the last column). */
-    int moved = shift_open_boundary(S, st->us, st->vs);
-    mls_to_mesh(S, st->us, st->vs, st->flux, st->usc, st->vsc);
-    st->bp_shifted = moved;
-    if (moved) { /* the values of this fit, for refill_up */
-        size_t nb = (size_t)st->bp.n;
-        memcpy(st->bpus, st->bp.u, nb * sizeof *st->bpus);
-        memcpy(st->bpvs, st->bp.v, nb * sizeof *st->bpvs);
-        restore_open_boundary(S);
-    }
+    st->bp_shifted = shift_open_boundary(S, st->us, st->vs, st->bpus, st->bpvs);
+    /* u*_P in every cell, or only where the step needs it (mls_to_mesh) */
+    st->uc_all = st->want_fields || su->set.refill != SOL_REFILL_CARRIED || su->set.anisotropic;
+    mls_to_mesh(S, st->us, st->vs, st->bp_shifted ? st->bpus : st->bp.u, st->bp_shifted ? st->bpvs : st->bp.v,
+                st->flux, st->usc, st->vsc, st->uc_all ? NULL : su->uc_keep);
 }
 
 /* The fixed face values of the pressure the step's PPE solves for: pi's
@@ -2648,10 +2639,8 @@ static void interpolation_error(sol *S, double dt)
     }
     /* open zero-gradient faces: their boundary particles with the kick, as
      * Step 8 gives them the increment of u* */
-    int moved = th > 0 && shift_open_boundary(S, fu, fv);
-    mls_to_mesh(S, fu, fv, st->fluxe, NULL, NULL);
-    if (moved)
-        restore_open_boundary(S);
+    int moved = th > 0 && shift_open_boundary(S, fu, fv, st->bpue, st->bpve);
+    mls_to_mesh(S, fu, fv, moved ? st->bpue : st->bp.u, moved ? st->bpve : st->bp.v, st->fluxe, NULL, NULL, NULL);
 #pragma omp parallel for schedule(static) num_threads(S->nthreads)
     for (ump_idx f = 0; f < m->nfaces; f++) {
         double phi = th > 0 ? st->flux[f] - th * dt * st->gflux[f] : st->flux[f];
