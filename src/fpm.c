@@ -415,10 +415,8 @@ static ump_status mls_rows(fpm *f, fpm_stats *st, ump_err *err)
                 }
             }
             mls_basis b = mls_full(dx, dy, k, h, wf, c, NULL);
-            f->quad[i] = b == MLS_QUADRATIC;
+            f->quad[i] = b == MLS_QUADRATIC; /* if not, surf[i] is set after the loop */
             nlin += b != MLS_QUADRATIC;
-            if (b != MLS_QUADRATIC) /* too few neighbours: a free-surface particle (a wet wall point: dry) */
-                f->surf[i] = 1;
             f->sx[i] = c1[0];
             f->sy[i] = c2[0];
             f->sl[i] = c3[0] + c5[0];
@@ -436,6 +434,13 @@ static ump_status mls_rows(fpm *f, fpm_stats *st, ump_err *err)
             }
         }
     }
+    /* too few neighbours for the quadratic fit: a free-surface particle (a
+     * wet wall point: dry). Set after the loop, which reads its neighbours'
+     * surf: within it the rows would depend on the order of the particles
+     * and on the threads' schedule. */
+    for (size_t i = 0; i < n; i++)
+        if (f->kind[i] < FPM_GHOST && !f->quad[i])
+            f->surf[i] = 1;
     st->nlinear = nlin;
     return UMP_OK;
 }

@@ -86,21 +86,43 @@ typedef struct key_rec {
     size_t i;
 } key_rec;
 
-static int cmp_key(const void *p, const void *q)
+static int key_less(const key_rec *a, const key_rec *b)
 {
-    const key_rec *a = p, *b = q;
-    if (a->d2 != b->d2)
-        return (a->d2 > b->d2) - (a->d2 < b->d2);
-    return (a->i > b->i) - (a->i < b->i);
+    return a->d2 < b->d2 || (a->d2 == b->d2 && a->i < b->i);
 }
 
-/* Scratch of n key records followed by n flags, in the bins. */
+/* Sorts a[0 .. n) by (d2, i), a total order, bottom-up merging through tmp
+ * (n records): qsort would allocate its own buffer at every step. */
+static void sort_keys(key_rec *a, key_rec *tmp, size_t n)
+{
+    key_rec *src = a, *dst = tmp;
+    for (size_t w = 1; w < n; w = w > n / 2 ? n : 2 * w) {
+        for (size_t lo = 0; lo < n; lo += 2 * w) {
+            size_t mid = lo + w < n ? lo + w : n, hi = mid + w < n ? mid + w : n;
+            size_t i = lo, j = mid, k = lo;
+            while (i < mid && j < hi)
+                dst[k++] = key_less(&src[j], &src[i]) ? src[j++] : src[i++];
+            while (i < mid)
+                dst[k++] = src[i++];
+            while (j < hi)
+                dst[k++] = src[j++];
+        }
+        key_rec *t = src;
+        src = dst;
+        dst = t;
+    }
+    if (src != a)
+        memcpy(a, src, n * sizeof *a);
+}
+
+/* Scratch of 2n key records (the keys and the sort's buffer) followed by n
+ * flags, in the bins. */
 static ump_status work_reserve(part_bins *b, size_t n, key_rec **keys, unsigned char **flag,
                                ump_err *err)
 {
-    if (n > SIZE_MAX / (sizeof(key_rec) + 1))
+    if (n > SIZE_MAX / (2 * sizeof(key_rec) + 1))
         return UMP_FAIL(err, UMP_ERR_NOMEM, "particles: %zu particles overflow the scratch size", n);
-    size_t need = n * (sizeof(key_rec) + 1);
+    size_t need = n * (2 * sizeof(key_rec) + 1);
     if (!b->work || b->work_bytes < need) {
         size_t nb = b->work_bytes > SIZE_MAX / 2 ? SIZE_MAX : 2 * b->work_bytes;
         if (nb < need)
@@ -112,7 +134,7 @@ static ump_status work_reserve(part_bins *b, size_t n, key_rec **keys, unsigned 
         b->work_bytes = nb;
     }
     *keys = b->work; /* malloc'ed: aligned for key_rec */
-    *flag = (unsigned char *)b->work + n * sizeof(key_rec);
+    *flag = (unsigned char *)b->work + 2 * n * sizeof(key_rec);
     return UMP_OK;
 }
 
@@ -133,7 +155,7 @@ static size_t delete_close(const part_set *s, const part_bins *b, const mesh2d *
             keys[nk].i = i;
             nk++;
         }
-    qsort(keys, nk, sizeof *keys, cmp_key);
+    sort_keys(keys, keys + s->n, nk);
     for (size_t r = 0; r < nk; r++) {
         size_t i = keys[r].i;
         if (!flag[i])

@@ -980,6 +980,9 @@ static ump_status stencil_build(sol_setup *su, ump_err *err)
     const mesh2d *m = su->m;
     ump_idx nc = m->ncells;
     size_t tot = (size_t)m->n2_off[nc] + (size_t)nc;
+    UMP_CHECK(tot <= (size_t)UMP_IDX_MAX, err, UMP_ERR_INPUT,
+              "solver: %zu particle stencil entries: more than the %d that 32-bit labels index", tot,
+              UMP_IDX_MAX);
     if (!(su->st_off = ump_alloc_array((size_t)nc + 1, sizeof *su->st_off)) ||
         !(su->st_cell = ump_alloc_array(tot, sizeof *su->st_cell)))
         return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the particle stencils");
