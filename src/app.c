@@ -676,6 +676,58 @@ static ump_status check_planned_writes(const app *a, const rt_time *t0, ump_err 
     return rc;
 }
 
+/* The dimensions a field read must have, as OpenFOAM's solvers check them
+ * (icoFoam stops with "incompatible dimensions"): U m/s, p and p_rgh the
+ * kinematic pressure m^2/s^2 (p/rho), T K. */
+static ump_status check_dimensions(const fld_field *f, const char *path, const char *name, ump_err *err)
+{
+    static const struct { const char *name, *units; double d[7]; } want[] = {
+        {"U", "m/s", {0, 1, -1, 0, 0, 0, 0}},
+        {"p", "kinematic pressure m^2/s^2, p/rho, as icoFoam", {0, 2, -2, 0, 0, 0, 0}},
+        {"p_rgh", "kinematic pressure m^2/s^2, as buoyantBoussinesqPimpleFoam", {0, 2, -2, 0, 0, 0, 0}},
+        {"T", "K", {0, 0, 0, 1, 0, 0, 0}},
+    };
+    for (size_t k = 0; k < sizeof want / sizeof want[0]; k++) {
+        if (strcmp(name, want[k].name) != 0)
+            continue;
+        const double *d = f->dims, *w = want[k].d;
+        int same = 1;
+        for (int j = 0; j < 7; j++)
+            same &= d[j] == w[j];
+        if (same)
+            return UMP_OK;
+        return UMP_FAIL(err, UMP_ERR_INPUT,
+                        "%s: dimensions [%g %g %g %g %g %g %g]; %s must have [%g %g %g %g %g %g %g] (%s)", path,
+                        d[0], d[1], d[2], d[3], d[4], d[5], d[6], name, w[0], w[1], w[2], w[3], w[4], w[5], w[6],
+                        want[k].units);
+    }
+    return UMP_OK;
+}
+
+/* setRefCell.C: where no patch fixes the solved pressure (fixedValue,
+ * uniformFixedValue, totalPressure) its level needs pRefCell or pRefPoint
+ * and pRefValue, which icoFoam and buoyantBoussinesqPimpleFoam require
+ * then ("Unable to set reference cell", "Entry 'pRefValue' not found"). */
+static ump_status check_reference(const app *a, const fld_field *pf, const char *name, ump_err *err)
+{
+    for (int p = 0; p < a->pm->npatches; p++) {
+        fld_bc_type t = pf->patch[p].type;
+        if (a->pm->patch[p].n > 0 &&
+            (t == FLD_BC_FIXEDVALUE || t == FLD_BC_UNIFORMFIXEDVALUE || t == FLD_BC_TOTALPRESSURE))
+            return UMP_OK;
+    }
+    if (!a->so.has_p_ref_cell && !a->so.has_p_ref_point)
+        return UMP_FAIL(err, UMP_ERR_INPUT,
+                        "%s/system/fvSolution: %s: unable to set reference cell for field %s: no patch fixes %s, "
+                        "so its level needs either pRefCell or pRefPoint (and pRefValue), as in icoFoam",
+                        a->case_dir, a->so.algo, name, name);
+    if (!a->so.has_p_ref_value)
+        return UMP_FAIL(err, UMP_ERR_INPUT,
+                        "%s/system/fvSolution: %s: entry 'pRefValue' not found: no patch fixes %s, so its level "
+                        "needs pRefValue, as in icoFoam", a->case_dir, a->so.algo, name);
+    return UMP_OK;
+}
+
 /* Read a start-time field; a missing optional one gets `calculated`
  * patches (values from like) instead. */
 static ump_status read_start_field(app *a, const char *tname, const char *name, int ncomp, int optional,
@@ -699,7 +751,8 @@ static ump_status read_start_field(app *a, const char *tname, const char *name, 
         return rc;
     }
     printf("Reading field %s\n\n", name);
-    return fio_read_field(path, a->pm, ncomp, out, err);
+    UMP_CALL(fio_read_field(path, a->pm, ncomp, out, err));
+    return check_dimensions(*out, path, name, err);
 }
 
 /* The buoyant part of the set-up: g, Boussinesq constants, T, p_rgh, p,
@@ -714,6 +767,7 @@ static ump_status read_buoyant(app *a, const char *tname, ump_err *err)
         return UMP_FAIL(err, UMP_ERR_IO, "%s: not found: a buoyant case (constant/g present) needs the "
                         "temperature field T", path);
     UMP_CALL(fio_read_field(path, a->pm, 1, &a->T, err));
+    UMP_CALL(check_dimensions(a->T, path, "T", err));
     UMP_CALL(read_start_field(a, tname, "p_rgh", 1, 0, &a->prgh, err));
     snprintf(path, sizeof path, "%s/%s/alphat", a->case_dir, tname);
     if (foam_file_exists(path)) {
@@ -1224,6 +1278,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         goto done;
     if ((rc = read_start_field(&a, tname, "p", 1, a.bu.on, &a.p, err)) != UMP_OK ||
         (rc = read_start_field(&a, tname, "U", 3, 0, &a.U, err)) != UMP_OK ||
+        (rc = check_reference(&a, a.bu.on ? a.prgh : a.p, a.bu.on ? "p_rgh" : "p", err)) != UMP_OK ||
         (rc = settings(&a, &s, err)) != UMP_OK)
         goto done;
     s.t_start = t0; /* time-dependent boundary conditions without a value start here */

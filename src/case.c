@@ -285,7 +285,8 @@ ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *e
     static const char *algo[] = {"PISO", "PIMPLE", "SIMPLE"};
     const foam_dict *a = NULL;
     for (int i = 0; i < 3 && !a; i++)
-        a = foam_dict_sub(f->dict, algo[i]);
+        if ((a = foam_dict_sub(f->dict, algo[i])) != NULL)
+            snprintf(s->algo, sizeof s->algo, "%s", algo[i]);
     ump_status rc = UMP_OK;
     /* icoFoam: "keyword PISO is undefined in dictionary .../system/fvSolution" */
     if (!a) {
@@ -301,6 +302,8 @@ ump_status case_read_solution(const char *case_dir, case_solution *s, ump_err *e
     }
     int64_t cell = 0;
     if (a && rc == UMP_OK) {
+        s->has_p_ref_cell = foam_dict_find(a, "pRefCell", 0) != NULL;
+        s->has_p_ref_value = foam_dict_find(a, "pRefValue", 0) != NULL;
         if ((rc = foam_get_label_or(a, "pRefCell", 0, &cell, err)) == UMP_OK &&
             (rc = foam_get_scalar_or(a, "pRefValue", 0, &s->p_ref_value, err)) == UMP_OK &&
             foam_dict_find(a, "pRefPoint", 0)) {

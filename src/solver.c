@@ -778,9 +778,13 @@ static ump_status read_bcs(sol_setup *su, sol_state *st, const fld_field *U, con
                 st->vb[b] = val[m->ax[1]];
                 break;
             case FLD_BC_ZEROGRADIENT:
-            case FLD_BC_CALCULATED:
                 su->u_kind[b] = BU_OUTLET;
                 break;
+            case FLD_BC_CALCULATED: /* icoFoam stops on it too: a calculated patch cannot be solved for */
+                return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                                "U: boundary condition 'calculated' on patch '%s' gives the solved velocity no "
+                                "condition (OpenFOAM's icoFoam stops on it too); use fixedValue, noSlip, "
+                                "zeroGradient, inletOutlet, ...", pp->name);
             case FLD_BC_INLETOUTLET:
             case FLD_BC_OUTLETINLET:
                 su->u_kind[b] = bu->type == FLD_BC_INLETOUTLET ? BU_INLETOUTLET : BU_OUTLETINLET;
@@ -827,8 +831,12 @@ static ump_status read_bcs(sol_setup *su, sol_state *st, const fld_field *U, con
             case FLD_BC_SYMMETRYPLANE:
             case FLD_BC_SYMMETRY:
             case FLD_BC_SLIP: /* a scalar's slip is zeroGradient (basicSymmetry) */
-            case FLD_BC_CALCULATED:
                 break;
+            case FLD_BC_CALCULATED:
+                return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                                "%s: boundary condition 'calculated' on patch '%s' gives the solved pressure no "
+                                "condition (OpenFOAM's solvers stop on it too); use zeroGradient, fixedValue, "
+                                "fixedFluxPressure, totalPressure, ...", st->prgh_f ? "p_rgh" : "p", pp->name);
             case FLD_BC_INLETOUTLET:
             case FLD_BC_OUTLETINLET:
                 return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
@@ -2761,12 +2769,63 @@ static ump_status balance_buoyancy(sol *S, double dt, sol_stats *stats, ump_err 
 
 /* ---- Step 9: the pressure equation ----------------------------------------- */
 
+/* No face fixes the pressure (su->need_ref): the PPE is a pure Neumann
+ * problem, solvable only if the boundary fluxes sum to zero, and a
+ * reference cell would otherwise absorb the difference as a source. As
+ * OpenFOAM's adjustPhi (icoFoam's pEqn.H): the outflow through the faces
+ * whose velocity is not fixed (zeroGradient, inletOutlet) is scaled to the
+ * inflow less the fixed outflow; where there is none to scale, the run
+ * stops with OpenFOAM's message. Faces of fixed velocity (and outletInlet,
+ * a mixed condition that v1912 counts as fixing the value) are not
+ * scaled; symmetry and slip faces carry no flux. Serial: one pass over the
+ * faces, in face order, so the sums do not depend on the threads. */
+static ump_status adjust_phi(sol *S, ump_err *err)
+{
+    const sol_setup *su = &S->su;
+    sol_state *st = &S->st;
+    const mesh2d *m = su->m;
+    ump_idx ni = m->ninternal;
+    double mass_in = 0, fixed_out = 0, adj_out = 0, total = 1e-300; /* VSMALL */
+    for (ump_idx f = 0; f < ni; f++)
+        total += fabs(st->flux[f]);
+    for (ump_idx f = ni; f < m->nfaces; f++) {
+        double phi = st->flux[f];
+        int fixed = su->u_kind[f - ni] == BU_FIXED || su->u_kind[f - ni] == BU_OUTLETINLET;
+        if (phi < 0)
+            mass_in -= phi;
+        else if (fixed)
+            fixed_out += phi;
+        else
+            adj_out += phi;
+    }
+    double corr = 1;
+    if (adj_out > 1e-300 && adj_out / total > 1e-15) /* VSMALL, SMALL */
+        corr = (mass_in - fixed_out) / adj_out;
+    else if (fabs(fixed_out - mass_in) / total > 1e-8)
+        return UMP_FAIL(err, UMP_ERR_INPUT,
+                        "continuity error cannot be removed by adjusting the outflow: no patch fixes the pressure, "
+                        "and no flux leaves through the faces whose velocity is not fixed (zeroGradient, "
+                        "inletOutlet). Check the velocity boundary conditions (fix the pressure on an outlet) "
+                        "and/or run potentialFoam to initialise the outflow. Total flux %g, specified mass inflow "
+                        "%g, specified mass outflow %g, adjustable mass outflow %g (OpenFOAM's adjustPhi)",
+                        total, mass_in, fixed_out, adj_out);
+    if (corr != 1)
+        for (ump_idx f = ni; f < m->nfaces; f++) {
+            int fixed = su->u_kind[f - ni] == BU_FIXED || su->u_kind[f - ni] == BU_OUTLETINLET;
+            if (!fixed && st->flux[f] > 0)
+                st->flux[f] *= corr;
+        }
+    return UMP_OK;
+}
+
 static ump_status step9_pressure(sol *S, double dt, ump_err *err)
 {
     const sol_setup *su = &S->su;
     sol_state *st = &S->st;
     const mesh2d *m = su->m;
     double th = su->set.p_theta;
+    if (su->need_ref)
+        UMP_CALL(adjust_phi(S, err));
     if (th > 0) {
         /* pressureTheta: the predicted particles carry -th dt grad p^{n-1/2}
          * (path_pressure_kick); adding th dt G p^{n-1/2} to the fluxes makes

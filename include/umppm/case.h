@@ -59,8 +59,10 @@ typedef struct case_buoyancy {
 } case_buoyancy;
 
 typedef struct case_solution {
+    char algo[8];                /* the dictionary read: PISO, PIMPLE or SIMPLE */
     long p_ref_cell;             /* PISO/PIMPLE/SIMPLE pRefCell, default 0 */
     double p_ref_value;          /* pRefValue, default 0 */
+    int has_p_ref_cell, has_p_ref_value; /* given (required where p needs a reference) */
     int has_p_ref_point;
     double p_ref_point[3];       /* pRefPoint, if given instead of pRefCell */
 } case_solution;

@@ -131,6 +131,12 @@ check UMPPM-unknown-key "fvSolution:[0-9]+: UMPPM: unknown key 'alpah'; known ke
     "echo 'UMPPM { alpah 0.1; }' >> system/fvSolution"
 check PISO-missing "fvSolution: keyword PISO is undefined" \
     "sed -i 's/^PISO/NOTPISO/' system/fvSolution"
+# the cavity's p is fixed nowhere: icoFoam needs pRefCell (or pRefPoint)
+# and pRefValue (before, both defaulted to 0 silently)
+check pRefCell-missing "system/fvSolution: PISO: unable to set reference cell for field p: no patch fixes p, so its level needs either pRefCell or pRefPoint" \
+    "sed -i '/^ *pRefCell /d' system/fvSolution"
+check pRefValue-missing "system/fvSolution: PISO: entry 'pRefValue' not found: no patch fixes p" \
+    "sed -i '/^ *pRefValue /d' system/fvSolution"
 check pRefPoint-outside "fvSolution: Unable to set reference cell for field p. Reference point pRefPoint \(5 5 0.005\) found on 0 domains" \
     "sed -i 's/^\( *\)pRefCell .*/\1pRefPoint (5 5 0.005);/' system/fvSolution"
 check pRefPoint-outside-checkMesh "Unable to set reference cell for field p" \
