@@ -443,6 +443,14 @@ static ump_status restart_cloud(app *a, const char *tname, ump_err *err)
         struct stat st;
         snprintf(ut, sizeof ut, "%s/uniform/time", dir);
         snprintf(cl, sizeof cl, "%s/lagrangian/%s", dir, a->um.cloud_name);
+        char co[4700];
+        snprintf(co, sizeof co, "%s/coordinates", cl);
+        if (foam_file_exists(co)) /* v1912's barycentric cloud: needs the mesh's tet decomposition */
+            return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                            "%s: not found: the cloud '%s' of time %s has only 'coordinates', OpenFOAM's "
+                            "barycentric format (as mapFields and decomposePar write it), which umppmFoam does "
+                            "not read; run with -reseed to seed new particles from the fields of time %s",
+                            path, a->um.cloud_name, tname, tname);
         if (stat(ut, &st) == 0 || stat(cl, &st) == 0)
             return UMP_FAIL(err, UMP_ERR_IO, "%s: not found: the restart from time %s has no particle cloud "
                             "'%s' (cloudName); run with -reseed to seed new particles from the fields",
@@ -1336,6 +1344,8 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     double cont_cumulative = 0;
     double stage_cpu[SOL_NSTAGES] = {0}, stage_wall[SOL_NSTAGES] = {0};
     size_t run_left = 0, run_walled = 0; /* particles: over the run */
+    long co_over = 0;                     /* steps at a Courant number above 1 */
+    double co_peak = 0;
     if ((rc = fo_setup(&a, err)) != UMP_OK || (rc = run_functions(&a, &t, 0, tname, 0, err)) != UMP_OK)
         goto done;
     a.ctl_watch = a.ctl.run_time_modifiable;
@@ -1349,16 +1359,30 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         }
         sol_courant(a.S, t.delta_t, &co_mean, &co_max);
         printf("Courant Number mean: %g max: %g\n", co_mean, co_max);
+        double dt_co = t.delta_t;
         if (a.ctl.adjust_time_step) {
             rt_adjust_delta_t(&t, co_max);
             printf("deltaT = %g\n", t.delta_t);
         }
+        /* the step's own Courant number (after adjustTimeStep); above 1 the
+         * particles cross more than a cell per step (README, "Defaults by
+         * accuracy per CPU second") */
+        double co_step = dt_co > 0 ? co_max * t.delta_t / dt_co : co_max;
         rt_advance(&t);
         sol_set_time(a.S, t.value); /* time-dependent boundary conditions at the new time */
         if (t.precision_raised)
             printf("--> umppmFoam Warning: increased the timePrecision to %d to distinguish between "
                    "timeNames at time %s\n", t.precision, t.name);
         printf("Time = %s\n\n", t.name);
+        if (co_step > 1) {
+            if (co_over++ == 0)
+                printf("--> umppmFoam Warning: Courant number %g > 1 in this step: particles cross more than one "
+                       "cell per step, and umppmFoam's results then depend strongly on the step (README, "
+                       "\"Defaults by accuracy per CPU second\": Co 0.5 where there are walls); reduce deltaT, or "
+                       "set adjustTimeStep yes; maxCo 0.5; (the steps above 1 are counted at the end of the "
+                       "run)\n\n", co_step);
+            co_peak = co_step > co_peak ? co_step : co_peak;
+        }
         /* the fields written cost a pass of their own (solver.h): only at
          * the steps that write them, feed a function object with p, may
          * stop on a signal, or end the run (a signal during the last step
@@ -1443,6 +1467,9 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         /* walls stop particles (src/solver.c wall_stop): none is lost there */
         printf("Particles over %ld steps: %zu left through outlets, %zu moves stopped at walls "
                "(none lost through walls)\n\n", step, run_left, run_walled);
+        if (co_over)
+            printf("--> umppmFoam Warning: Courant number above 1 in %ld of %ld steps (largest %g)\n\n", co_over,
+                   step, co_peak);
     }
     rc = UMP_OK;
 done:

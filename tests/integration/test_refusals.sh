@@ -137,6 +137,10 @@ check pRefCell-missing "system/fvSolution: PISO: unable to set reference cell fo
     "sed -i '/^ *pRefCell /d' system/fvSolution"
 check pRefValue-missing "system/fvSolution: PISO: entry 'pRefValue' not found: no patch fixes p" \
     "sed -i '/^ *pRefValue /d' system/fvSolution"
+# a cloud in v1912's barycentric format (mapFields, decomposePar) is not
+# read: said so by name (before: "has no particle cloud")
+check cloud-barycentric "lagrangian/umppmCloud/positions: not found: the cloud 'umppmCloud' of time 0 has only 'coordinates', OpenFOAM's barycentric format" \
+    "mkdir -p 0/lagrangian/umppmCloud && echo '0()' > 0/lagrangian/umppmCloud/coordinates"
 check pRefPoint-outside "fvSolution: Unable to set reference cell for field p. Reference point pRefPoint \(5 5 0.005\) found on 0 domains" \
     "sed -i 's/^\( *\)pRefCell .*/\1pRefPoint (5 5 0.005);/' system/fvSolution"
 check pRefPoint-outside-checkMesh "Unable to set reference cell for field p" \
