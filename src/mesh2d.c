@@ -924,7 +924,9 @@ static double face_skewness(const mesh2d *m, ump_idx f)
     double svx = cpfx - t * dx, svy = cpfy - t * dy;
     double sv = hypot(svx, svy);
     double hx = svx / (sv + 1e-150), hy = svy / (sv + 1e-150);
-    double fd = 0.2 * hypot(dx, dy) + 1e-150;
+    /* faceSkewness: 0.2 |d|; boundaryFaceSkewness: 0.4 |d|, d reaching the
+     * face only */
+    double fd = (f < m->ninternal ? 0.2 : 0.4) * hypot(dx, dy) + 1e-150;
     ump_idx vv[2] = {m->fv0[f], m->fv1[f]};
     for (int k = 0; k < 2; k++)
         fd = fmax(fd, fabs(hx * (m->vx[vv[k]] - m->fx[f]) + hy * (m->vy[vv[k]] - m->fy[f])));
@@ -976,8 +978,10 @@ void mesh_compute_stats(const mesh2d *m, mesh_stats *s)
         double c = (dx * m->nx[f] + dy * m->ny[f]) / (hypot(dx, dy) + 1e-300);
         double ang = acos(fmax(-1.0, fmin(1.0, c))) * 180.0 / UMP_PI;
         s->nonorth_max = fmax(s->nonorth_max, ang);
-        sum += ang;
+        sum += c;
     }
+    /* checkMesh's "average" (primitiveMeshCheck.C): the angle of the mean
+     * cosine, not the mean angle */
     if (m->ninternal > 0)
-        s->nonorth_mean = sum / m->ninternal;
+        s->nonorth_mean = acos(fmax(-1.0, fmin(1.0, sum / m->ninternal))) * 180.0 / UMP_PI;
 }
