@@ -208,7 +208,7 @@ check inletOutlet-phi "0/U:[0-9]+: patch 'outlet': inletOutlet: 'phi phiAbs' is 
 # no outflow to scale to the inflow, and the run stops at the first step
 # with OpenFOAM's message, nothing written (before, it ran, the reference
 # cell absorbing the inflow; OpenFOAM's elbow with a zeroGradient p outlet
-# lost 3 % of its volume by t = 2); (b) from U = (0.1 0 0) with a
+# still had an inward flux at its outlet at t = 2); (b) from U = (0.1 0 0) with a
 # zeroGradient outlet the outflow is scaled to the inflow and the
 # continuity errors stay at round-off (before: 4.4e-5 per step).
 nofix=$work/noFixedPressure
