@@ -68,6 +68,10 @@ static ump_status read_values(const foam_token *tok, size_t nt, size_t *pos, siz
         } else {
             double *lst = NULL;
             size_t cnt = 0;
+            if (*pos < nt && (tok[*pos].type == FOAM_TOK_LABEL || tok[*pos].type == FOAM_TOK_SCALAR))
+                return UMP_FAIL(err, UMP_ERR_PARSE, "%s: %s: expected a vector (x y z) after 'uniform', found "
+                                "%s", foam_tok_where(tok, nt, at, file, w, sizeof w), what,
+                                foam_tok_str(&tok[*pos], s, sizeof s));
             /* "(x y z)" is read as a bare list of 3 scalars */
             UMP_CALL(foam_tok_scalar_list(tok, nt, pos, 1, &lst, &cnt, what, err));
             if (cnt != 3) {

@@ -57,6 +57,8 @@ check U-unknown-bc        "0/U:[0-9]+: patch 'fixedWalls': boundary condition ty
     "sed -i 's/noSlip/partialSlip/' 0/U"
 check U-missing-patch     "0/U:[0-9]+: boundaryField has no entry for patch 'fixedWalls'" \
     "sed -i 's/fixedWalls/otherWalls/' 0/U"
+check U-scalar-value      "0/U:[0-9]+: internalField: expected a vector \\(x y z\\) after 'uniform', found label 1" \
+    "sed -i 's/^internalField .*/internalField uniform 1;/' 0/U"
 check p-bad-number        '0/p:[0-9]+: '        "sed -i 's/^internalField .*/internalField uniform 1.2.3;/' 0/p"
 check p-missing           '0/p'                 "rm 0/p"
 check p-wrong-class       '0/p: class'          "sed -i 's/volScalarField/volVectorField/' 0/p"
