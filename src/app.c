@@ -1346,7 +1346,6 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     size_t run_left = 0, run_walled = 0; /* particles: over the run */
     long co_over = 0;                     /* steps at a Courant number above 1 */
     double co_peak = 0;
-    long zg_in = 0;                       /* steps with inflow through zeroGradient U faces */
     if ((rc = fo_setup(&a, err)) != UMP_OK || (rc = run_functions(&a, &t, 0, tname, 0, err)) != UMP_OK)
         goto done;
     a.ctl_watch = a.ctl.run_time_modifiable;
@@ -1402,17 +1401,6 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         }
         printf("Particles: %zu (added %zu, deleted %zu, left through outlets %zu, stopped at walls %zu)\n",
                st.np, st.added, st.deleted, st.left, st.walled);
-        /* backflow through zeroGradient velocity: the inflow takes the
-         * owner's velocity, which umppmFoam's refills follow poorly (README,
-         * "Boundary conditions") */
-        ump_idx zf = -1;
-        size_t nzg = sol_zero_gradient_inflow(a.S, &zf);
-        if (nzg > 0 && zg_in++ == 0)
-            printf("--> umppmFoam Warning: fluid enters through %zu face(s) whose velocity is zeroGradient "
-                   "(the first on patch '%s'): there the inflow takes the neighbouring cell's velocity, which "
-                   "umppmFoam's particles follow poorly (OpenFOAM's cavity with zeroGradient walls is 40 %% off "
-                   "icoFoam); for an outlet that may see backflow use inletOutlet (the steps with such inflow "
-                   "are counted at the end of the run)\n", nzg, a.pm->patch[a.m->face_patch[zf]].name);
         for (int k = 0; k < (a.bu.on ? 3 : 2); k++)
             printf("BiCGSTAB:  Solving for %s, Initial residual = %g, Final residual = %g, "
                    "No Iterations %d\n", k == 2 ? "T" : a.m->ax[k] == 0 ? "Ux" : a.m->ax[k] == 1 ? "Uy" : "Uz",
@@ -1482,9 +1470,6 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         if (co_over)
             printf("--> umppmFoam Warning: Courant number above 1 in %ld of %ld steps (largest %g)\n\n", co_over,
                    step, co_peak);
-        if (zg_in)
-            printf("--> umppmFoam Warning: inflow through zeroGradient velocity faces in %ld of %ld steps\n\n",
-                   zg_in, step);
     }
     rc = UMP_OK;
 done:

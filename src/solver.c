@@ -3478,18 +3478,6 @@ void sol_courant(const sol *S, double dt, double *mean, double *max)
 const double *sol_cell_u(const sol *S) { return S->st.uc; }
 
 const unsigned char *sol_cell_u_current(const sol *S) { return S->st.uc_all ? NULL : S->su.uc_keep; }
-
-size_t sol_zero_gradient_inflow(const sol *S, ump_idx *face)
-{
-    const mesh2d *m = S->su.m;
-    size_t n = 0;
-    for (ump_idx f = m->ninternal; f < m->nfaces; f++)
-        if (S->su.u_kind[f - m->ninternal] == BU_OUTLET && S->st.flux[f] < 0) {
-            if (n++ == 0 && face)
-                *face = f;
-        }
-    return n;
-}
 const double *sol_cell_v(const sol *S) { return S->st.vc; }
 const double *sol_cell_p(const sol *S) { return S->st.pout; }
 const double *sol_cell_p_projection(const sol *S) { return S->st.p; }

@@ -212,11 +212,6 @@ const double *sol_cell_v(const sol *S);
  * anisotropicCells, or no step yet), else a mask [ncells] of the owners
  * of boundary faces. */
 const unsigned char *sol_cell_u_current(const sol *S);
-
-/* The boundary faces whose velocity condition is zeroGradient and whose
- * last corrected flux enters the domain: their number, and the first in
- * *face (if face is given and there is one). */
-size_t sol_zero_gradient_inflow(const sol *S, ump_idx *face);
 /* The pressure written (kinematic): the solution of the PPE of the last
  * step that computed it (sol_want_fields; sol_stats.fields_written) less the
  * potential of the particle-to-mesh interpolation error (docs/METHOD.md
