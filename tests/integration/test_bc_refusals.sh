@@ -203,14 +203,17 @@ check inletOutlet-phi "0/U:[0-9]+: patch 'outlet': inletOutlet: 'phi phiAbs' is 
     "$U_IN" "type inletOutlet; inletValue uniform (0 0 0); phi phiAbs;" "$P_IN" "$P_OUT"
 
 # No patch fixes the pressure (zeroGradient p on the inlet and the outlet,
-# pRefCell 0), as OpenFOAM's adjustPhi: (a) an inflow into a box whose
-# other faces all have a fixed velocity (the outlet fixedValue 0): there is
-# no outflow to scale to the inflow, and the run stops at the first step
-# with OpenFOAM's message, nothing written (before, it ran, the reference
-# cell absorbing the inflow; OpenFOAM's elbow with a zeroGradient p outlet
-# still had an inward flux at its outlet at t = 2); (b) from U = (0.1 0 0) with a
-# zeroGradient outlet the outflow is scaled to the inflow and the
-# continuity errors stay at round-off (before: 4.4e-5 per step).
+# pRefCell 0). (a) With a face of unfixed velocity (the zeroGradient
+# outlet) fluid may cross it with nothing to balance the flux: refused by
+# name before the first step (before 2026-12-06 it ran, the reference cell
+# absorbing the imbalance: a 2 x 1 channel of 20 x 10 cells, nu 0.01, from
+# U = 0.1, reached a cumulative continuity error of -0.044 by t = 2 and U
+# 0.98 from icoFoam's; scaling the outflow as icoFoam's adjustPhi left it
+# 0.63 off). (b) Every velocity fixed, an
+# inflow into a box whose outlet is fixedValue 0: the run stops at the
+# first step with OpenFOAM's adjustPhi message, nothing written.
+check no-fixed-pressure-open "patch 'outlet': fluid may cross it \\(its velocity is not fixed\\), but no patch fixes the pressure" \
+    "$U_IN" "$U_OUT" "$P_IN" "$P_IN"
 nofix=$work/noFixedPressure
 mkdir -p "$nofix/0" && cp -r "$base/system" "$base/constant" "$nofix/"
 fields "$nofix" "$U_IN" "type fixedValue; value uniform (0 0 0);" "$P_IN" "$P_IN"
@@ -223,23 +226,6 @@ if [ "$rc" -ne 0 ] && [ "$rc" -lt 128 ] &&
     npass=$((npass + 1))
 else
     echo "FAIL  no-fixed-pressure, inflow into a closed box: exit $rc, $(tail -n 1 "$nofix/log")"
-    nfail=$((nfail + 1))
-fi
-nofix2=$work/noFixedPressureFlowing
-mkdir -p "$nofix2/0" && cp -r "$base/system" "$base/constant" "$nofix2/"
-fields "$nofix2" "type fixedValue; value uniform (0.1 0 0);" "$U_OUT" "$P_IN" "$P_IN"
-sed -i 's/^internalField uniform (0 0 0);/internalField uniform (0.1 0 0);/' "$nofix2/0/U"
-if timeout 120 "$UMPPMFOAM" -case "$nofix2" > "$nofix2/log" 2>&1; then
-    g=$(awk '/time step continuity errors :/ { gsub(/,/, ""); for (i = 1; i <= NF; i++) if ($i == "global") { v = $(i + 2); v = v < 0 ? -v : v; if (v > m) m = v } } END { printf "%.3g", m + 0 }' "$nofix2/log")
-    if awk -v g="$g" 'BEGIN { exit !(g < 1e-12) }'; then
-        echo "PASS  no-fixed-pressure flowing: outflow scaled to the inflow, largest global continuity error $g"
-        npass=$((npass + 1))
-    else
-        echo "FAIL  no-fixed-pressure flowing: largest global continuity error $g (bound 1e-12)"
-        nfail=$((nfail + 1))
-    fi
-else
-    echo "FAIL  no-fixed-pressure flowing: $(tail -n 1 "$nofix2/log")"
     nfail=$((nfail + 1))
 fi
 
