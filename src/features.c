@@ -209,14 +209,31 @@ static ump_status check_momentum_transport(const char *case_dir, ump_err *err)
                           "(use simulationType laminar;)", e->file, e->line, w, feat_solver);
         }
         const foam_dict *lam = rc == UMP_OK ? foam_dict_sub(f->dict, "laminar") : NULL;
-        const foam_entry *e = lam ? foam_dict_find(lam, "laminarModel", 0) : NULL;
-        const char *m = word_of(lam, "laminarModel");
-        if (e && (!m || strcmp(m, "Stokes") != 0)) {
+        /* v1912's laminarModel, and the later momentumTransport's model and
+         * viscosityModel (generalisedNewtonian with a Newtonian viscosity is
+         * Stokes) */
+        const foam_entry *ve = lam ? foam_dict_find(lam, "viscosityModel", 0) : NULL;
+        const char *vm = word_of(lam, "viscosityModel");
+        int newtonian = vm && strcmp(vm, "Newtonian") == 0;
+        static const char *const keys[] = {"laminarModel", "model"};
+        for (int k = 0; k < 2 && rc == UMP_OK; k++) {
+            const foam_entry *e = lam ? foam_dict_find(lam, keys[k], 0) : NULL;
+            const char *m = word_of(lam, keys[k]);
+            int gn_ok = k == 1 && m && strcmp(m, "generalisedNewtonian") == 0; /* its viscosityModel below */
+            if (e && !gn_ok && (!m || strcmp(m, "Stokes") != 0)) {
+                char t[128];
+                rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                              "%s:%d: laminar { %s %s; }: only the Newtonian laminar model Stokes is "
+                              "implemented by %s (no viscoelastic stress or generalised-Newtonian viscosity); "
+                              "set %s Stokes, or use %s", e->file, e->line, keys[k], first_word(e, t, sizeof t),
+                              feat_solver, keys[k], feat_instead);
+            }
+        }
+        if (rc == UMP_OK && ve && !newtonian) { /* (none given: the solver's Newtonian nu) */
             char t[128];
             rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                          "%s:%d: laminar { laminarModel %s; }: only the Newtonian laminarModel Stokes is "
-                          "implemented by %s (no viscoelastic stress); set laminarModel Stokes, or use "
-                          "%s", e->file, e->line, first_word(e, t, sizeof t), feat_solver, feat_instead);
+                          "%s:%d: laminar { viscosityModel %s; }: non-Newtonian viscosity is not implemented by %s",
+                          ve->file, ve->line, first_word(ve, t, sizeof t), feat_solver);
         }
         foam_file_free(&f);
         if (rc != UMP_OK)

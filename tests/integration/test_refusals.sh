@@ -87,6 +87,11 @@ check laminarModel-Maxwell "turbulenceProperties:[0-9]+: laminar \{ laminarModel
     "dict constant/turbulenceProperties dictionary 'simulationType laminar; laminar { laminarModel Maxwell; MaxwellCoeffs { nuM 1; lambda 5; } }'"
 check laminarModel-momentumTransport-checkMesh "momentumTransport:[0-9]+: laminar \{ laminarModel Giesekus; \}" \
     "dict constant/momentumTransport dictionary 'simulationType laminar; laminar { laminarModel Giesekus; }'" -checkMesh
+# the later momentumTransport's keys (ran as Newtonian before 2026-12-06)
+check laminar-model-Maxwell "momentumTransport:[0-9]+: laminar \{ model Maxwell; \}.*Stokes" \
+    "dict constant/momentumTransport dictionary 'simulationType laminar; laminar { model Maxwell; }'"
+check laminar-viscosityModel "momentumTransport:[0-9]+: laminar \{ viscosityModel CrossPowerLaw; \}: non-Newtonian viscosity" \
+    "dict constant/momentumTransport dictionary 'simulationType laminar; laminar { model generalisedNewtonian; viscosityModel CrossPowerLaw; }'"
 check turbulence-RAS "turbulenceProperties:[0-9]+: simulationType 'RAS' is not supported" \
     "dict constant/turbulenceProperties dictionary 'simulationType RAS; RAS { RASModel kEpsilon; }'"
 check transportModel-CrossPowerLaw "transportProperties:[0-9]+: transportModel CrossPowerLaw: non-Newtonian" \
