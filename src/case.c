@@ -1122,6 +1122,16 @@ ump_status case_read_phases(const char *case_dir, case_phases *ph, ump_err *err)
                       "more phases (multiphaseInterFoam) are not implemented by meshlessFoam", e->file, e->line);
     for (int k = 0; k < 2 && rc == UMP_OK; k++)
         rc = read_phase(d, path, ph->name[k], &ph->nu[k], &ph->rho[k], err);
+    /* the first phase is the one simulated (interFoam's alpha.<first>): as
+     * particles it must be the liquid (phases (air water) had simulated the
+     * air as the liquid and the water as the void) */
+    if (rc == UMP_OK && ph->rho[0] < ph->rho[1])
+        rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                      "%s:%d: phases (%s %s): meshlessFoam simulates the first phase as the liquid (particles) and "
+                      "the second as a void, but '%s' (rho %g) is lighter than '%s' (rho %g); list the liquid "
+                      "first, phases (%s %s), with its alpha.%s field, as interFoam's tutorials do",
+                      e->file, e->line, ph->name[0], ph->name[1], ph->name[0], ph->rho[0], ph->name[1], ph->rho[1],
+                      ph->name[1], ph->name[0], ph->name[1]);
     if (rc == UMP_OK)
         rc = get_transport_constant(d, "sigma", d_sigma, "kg/s^2", 0, 0, &ph->sigma, &ph->has_sigma, err);
     foam_file_free(&f);

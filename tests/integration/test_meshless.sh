@@ -335,6 +335,11 @@ if [ -d "$c/constant/polyMesh" ]; then
     fresh
     sed -i 's/^phases .*/phases (water oil air);/' "$r/constant/transportProperties"
     expect_refusal threePhases "two phases"
+    # the first phase is simulated as the liquid: the gas first is refused
+    # (before 2026-12-06 the air ran as particles and the water as the void)
+    fresh
+    sed -i 's/^phases .*/phases (air water);/' "$r/constant/transportProperties"
+    expect_refusal gasFirst "meshlessFoam simulates the first phase as the liquid"
     # moving meshes: the container in rigid oscillation is read (the run
     # logs it), a deforming mesh or another motion is refused by name
     fresh
