@@ -310,6 +310,15 @@ if [ -d "$c/constant/polyMesh" ]; then
     fresh
     sed -i '/atmosphere/,/}/{s/type .*/type fixedValue;/;s/value .*/value uniform (0 -1 0);/}' "$r/0/U"
     expect_refusal inflow "inflow boundaries"
+    # a time-dependent inflow starting at zero, and a zero fixed U on an
+    # open patch (both ran until 2026-12-06: the inflow ignored, the
+    # particles leaving through the "closed" patch)
+    fresh
+    sed -i '/atmosphere/,/}/{s/type .*/type flowRateInletVelocity; volumetricFlowRate table ((0 0) (1 0.001));/;/value/d}' "$r/0/U"
+    expect_refusal flowRateInflow "time-dependent U (flowRateInletVelocity): inflow"
+    fresh
+    sed -i '/atmosphere/,/}/{s/type .*/type noSlip;/;/value/d}' "$r/0/U"
+    expect_refusal closedOpenPatch "make it a wall patch"
     fresh
     sed -i '/rightWall/,/}/s/type *wall;/type symmetryPlane;/' "$r/constant/polyMesh/boundary"
     expect_refusal symmetryPlane "symmetry"
