@@ -718,12 +718,9 @@ static ump_status check_dimensions(const fld_field *f, const char *path, const c
  * then ("Unable to set reference cell", "Entry 'pRefValue' not found"). */
 static ump_status check_reference(const app *a, const fld_field *pf, const char *name, ump_err *err)
 {
-    for (int p = 0; p < a->pm->npatches; p++) {
-        fld_bc_type t = pf->patch[p].type;
-        if (a->pm->patch[p].n > 0 &&
-            (t == FLD_BC_FIXEDVALUE || t == FLD_BC_UNIFORMFIXEDVALUE || t == FLD_BC_TOTALPRESSURE))
+    for (int p = 0; p < a->pm->npatches; p++)
+        if (a->pm->patch[p].n > 0 && fld_bc_is_fixed(pf->patch[p].type))
             return UMP_OK;
-    }
     if (!a->so.has_p_ref_cell && !a->so.has_p_ref_point)
         return UMP_FAIL(err, UMP_ERR_INPUT,
                         "%s/system/fvSolution: %s: unable to set reference cell for field %s: no patch fixes %s, "

@@ -223,10 +223,12 @@ static ump_status check_boundary(mlapp *a, ump_err *err)
             nwall++;
             continue;
         case PMESH_PATCH:
+            if (!fld_bc_is_fixed(up->type) || up->type == FLD_BC_TOTALPRESSURE)
+                continue;
             /* a time-dependent U (flowRateInletVelocity, uniformFixedValue)
              * is inflow even where its value at the start is zero */
-            if ((fld_bc_is_fixed(up->type) && up->type != FLD_BC_TOTALPRESSURE && !patch_zero(a->U, p)) ||
-                up->type == FLD_BC_FLOWRATEINLETVELOCITY || up->type == FLD_BC_UNIFORMFIXEDVALUE)
+            if (!patch_zero(a->U, p) || up->type == FLD_BC_FLOWRATEINLETVELOCITY ||
+                up->type == FLD_BC_UNIFORMFIXEDVALUE)
                 return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
                                 "%s/0/U: patch '%s' has a fixed non-zero or time-dependent U (%s): inflow "
                                 "boundaries are not implemented by meshlessFoam (open patches only let liquid "
@@ -234,13 +236,11 @@ static ump_status check_boundary(mlapp *a, ump_err *err)
             /* a fixed zero U closes the patch in interFoam; here every open
              * patch lets the particles leave (they had left through such
              * patches until 2026-12-06) */
-            if (fld_bc_is_fixed(up->type) && up->type != FLD_BC_TOTALPRESSURE)
-                return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                                "%s/0/U: patch '%s' is of type patch (open: meshlessFoam lets the liquid leave "
-                                "through it) but its U is %s (0 0 0), a closed boundary: make it a wall patch "
-                                "(type wall in constant/polyMesh/boundary)", a->case_dir, pp->name,
-                                fld_bc_name(up->type));
-            continue;
+            return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                            "%s/0/U: patch '%s' is of type patch (open: meshlessFoam lets the liquid leave "
+                            "through it) but its U is %s (0 0 0), a closed boundary: make it a wall patch "
+                            "(type wall in constant/polyMesh/boundary)", a->case_dir, pp->name,
+                            fld_bc_name(up->type));
         default:
             return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
                             "%s/constant/polyMesh/boundary: patch '%s' of type %s: meshlessFoam implements wall "
