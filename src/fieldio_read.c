@@ -35,14 +35,22 @@ static int regex_match(const char *pattern, const char *s)
     return ok;
 }
 
-static const foam_entry *match_patch(const foam_dict *bf, const pmesh_patch *p)
+/* The entry for patch p, or NULL: with *implicit_empty set where p is an
+ * empty patch that no name or group names (OpenFOAM gives it `empty`
+ * before it tries the regular expressions). */
+static const foam_entry *match_patch(const foam_dict *bf, const pmesh_patch *p, int *implicit_empty)
 {
+    *implicit_empty = 0;
     for (size_t i = 0; i < bf->n; i++)
         if (!bf->e[i].is_pattern && strcmp(bf->e[i].key, p->name) == 0)
             return &bf->e[i];
     for (size_t i = 0; i < bf->n; i++)
         if (!bf->e[i].is_pattern && pmesh_patch_in_group(p, bf->e[i].key))
             return &bf->e[i];
+    if (p->kind == PMESH_EMPTY) {
+        *implicit_empty = 1;
+        return NULL;
+    }
     for (size_t i = bf->n; i-- > 0;)
         if (bf->e[i].is_pattern && regex_match(bf->e[i].key, p->name))
             return &bf->e[i];
@@ -333,6 +341,18 @@ static ump_status check_bc_keys(const foam_dict *d, fld_bc_type t, const fld_fie
     }
 }
 
+/* Default face values of patch p: the adjacent cell values (zero for noSlip). */
+static void set_default_values(const pmesh *pm, int p, int ncomp, fld_field *fld)
+{
+    const pmesh_patch *pp = &pm->patch[p];
+    fld_patch *fp = &fld->patch[p];
+    size_t n = (size_t)pp->n, nc = (size_t)ncomp;
+    for (size_t i = 0; i < n; i++)
+        for (size_t k = 0; k < nc; k++)
+            fp->value[i * nc + k] = fp->type == FLD_BC_NOSLIP
+                                        ? 0.0 : fld->internal[(size_t)pm->owner[pp->start + (ump_idx)i] * nc + k];
+}
+
 static ump_status read_patch_entry(const foam_entry *e, const pmesh *pm, int p, int ncomp,
                                    fld_field *fld, ump_err *err)
 {
@@ -367,11 +387,7 @@ static ump_status read_patch_entry(const foam_entry *e, const pmesh *pm, int p, 
                             te->file, te->line, pp->name, pp->type, type);
     fp->type = (fld_bc_type)t;
     size_t n = (size_t)pp->n, nc = (size_t)ncomp;
-    /* default face values: the adjacent cell values (zero for noSlip) */
-    for (size_t i = 0; i < n; i++)
-        for (size_t k = 0; k < nc; k++)
-            fp->value[i * nc + k] = fp->type == FLD_BC_NOSLIP
-                                        ? 0.0 : fld->internal[(size_t)pm->owner[pp->start + (ump_idx)i] * nc + k];
+    set_default_values(pm, p, ncomp, fld);
     if ((fp->type == FLD_BC_NOSLIP || fp->type == FLD_BC_FLOWRATEINLETVELOCITY ||
          fp->type == FLD_BC_PRESSUREINLETOUTLETVELOCITY) && ncomp != 3)
         return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: patch '%s': %s applies to vector fields only",
@@ -525,8 +541,12 @@ ump_status fio_read_field(const char *path, const pmesh *pm, int ncomp, fld_fiel
         goto done;
     }
     for (int p = 0; p < pm->npatches && rc == UMP_OK; p++) {
-        const foam_entry *e = match_patch(bf, &pm->patch[p]);
-        if (!e)
+        int implicit_empty;
+        const foam_entry *e = match_patch(bf, &pm->patch[p], &implicit_empty);
+        if (implicit_empty) {
+            fld->patch[p].type = FLD_BC_EMPTY; /* as OpenFOAM: an empty patch may be left out */
+            set_default_values(pm, p, ncomp, fld);
+        } else if (!e)
             rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: boundaryField has no entry for patch '%s' (type %s)",
                           f->path, bf->line, pm->patch[p].name, pm->patch[p].type);
         else
