@@ -11,9 +11,15 @@
  *
  * Buoyant cases are recognised by constant/g, as buoyantBoussinesqPimpleFoam
  * sets them up: transportProperties then needs beta, TRef and Pr, the start
- * time T, p_rgh and U (p and alphat optional; alphat is only checked to
- * parse, as it is zero for laminar flow), and T, p_rgh and p (p = p_rgh +
- * rhok gh) are written, with the particle temperature in the cloud.
+ * time T, p_rgh and U (p and alphat optional), and T, p_rgh and p (p =
+ * p_rgh + rhok gh) are written, with the particle temperature in the cloud.
+ * alphat is zero in laminar flow: buoyantBoussinesqPimpleFoam sets it to
+ * nut/Prt = 0 at every step except on patches that keep their own value
+ * (fixedValue, fixedGradient, ...), where it adds to the wall's heat
+ * conduction; such a non-zero value is refused (check_alphat), and the start
+ * time's alphat is written, as read, at every write time (that solver needs
+ * it to restart). p_rgh zeroGradient on a patch of fixed U is refused
+ * (check_prgh_walls).
  * Without constant/g the case is isothermal (icoFoam's U and p).
  * constant/turbulenceProperties, if present, must say laminar.
  *
@@ -66,6 +72,8 @@ typedef struct app {
     pmesh *pm;
     mesh2d *m;
     fld_field *U, *p, *T, *prgh;   /* T, p_rgh: buoyant only */
+    char *alphat_text;              /* the start time's alphat (buoyant), written with every time */
+    size_t alphat_len;
     sol *S;
     fob_list fo;                    /* controlDict function objects */
     double *fo_dTdn, *fo_Tf;        /* per-face scratch [fo_cap] */
@@ -144,6 +152,7 @@ static void app_free(app *a)
     fld_free(&a->p);
     fld_free(&a->T);
     fld_free(&a->prgh);
+    free(a->alphat_text);
     fob_free(&a->fo);
     free(a->fo_dTdn);
     free(a->fo_Tf);
@@ -378,7 +387,9 @@ static ump_status write_time(app *a, const rt_time *t, ump_err *err)
             if ((rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->U, &fmt, &ef)) == UMP_OK &&
                 (rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->p, &fmt, &ef)) == UMP_OK &&
                 (!a->T || (rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->T, &fmt, &ef)) == UMP_OK) &&
-                (!a->T || (rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->prgh, &fmt, &ef)) == UMP_OK))
+                (!a->T || (rcf = fio_write_field(td.tmp_dir, t->name, a->pm, a->prgh, &fmt, &ef)) == UMP_OK) &&
+                (!a->alphat_text ||
+                 (rcf = fio_write_text(td.tmp_dir, "alphat", a->alphat_text, a->alphat_len, &ef)) == UMP_OK))
                 rcf = write_phi(a, td.tmp_dir, t->name, &fmt, &ef);
         }
 #pragma omp section
@@ -760,6 +771,79 @@ static ump_status read_start_field(app *a, const char *tname, const char *name, 
     return check_dimensions(*out, path, name, err);
 }
 
+/* 1 if the tokens of a value (uniform x, nonuniform List<scalar> n (...),
+ * binary or not) hold no number but zeros (the list's size n aside). */
+static int tokens_zero(const foam_token *t, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        if (t[i].type == FOAM_TOK_LABEL && i > 0 && t[i - 1].type == FOAM_TOK_WORD &&
+            strncmp(t[i - 1].v.str, "List", 4) == 0)
+            continue; /* the size of a nonuniform list */
+        if ((t[i].type == FOAM_TOK_LABEL && t[i].v.label != 0) ||
+            (t[i].type == FOAM_TOK_SCALAR && t[i].v.scalar != 0))
+            return 0;
+        if (t[i].type == FOAM_TOK_BLOB)
+            for (size_t k = 0; k < t[i].v.blob.n * (size_t)t[i].v.blob.ncomp; k++)
+                if (t[i].v.blob.is_label ? ((const int64_t *)t[i].v.blob.data)[k] != 0
+                                         : ((const double *)t[i].v.blob.data)[k] != 0)
+                    return 0;
+        if (t[i].type == FOAM_TOK_DICT)
+            return 0; /* a Function1 dictionary: not a plain zero */
+    }
+    return 1;
+}
+
+/* alphat in laminar flow (see the top of the file): a patch that keeps its
+ * own value must keep zero. */
+static ump_status check_alphat(const foam_file *f, const char *path, ump_err *err)
+{
+    const foam_dict *bf = foam_dict_sub(f->dict, "boundaryField");
+    if (!bf)
+        return UMP_FAIL(err, UMP_ERR_PARSE, "%s: boundaryField dictionary is missing", path);
+    static const char *const reset[] = {"calculated", "zeroGradient", "empty", "cyclic", "symmetryPlane",
+                                        "symmetry", "wedge", "processor"};
+    static const char *const keys[] = {"value", "gradient", "uniformValue", "refValue", "refGradient"};
+    for (size_t i = 0; i < bf->n; i++) {
+        const foam_entry *e = &bf->e[i];
+        const char *type = NULL;
+        if (!e->dict)
+            continue;
+        UMP_CALL(foam_get_word(e->dict, "type", &type, err));
+        int keeps = 1;
+        for (size_t k = 0; k < sizeof reset / sizeof *reset; k++)
+            keeps &= strcmp(type, reset[k]) != 0;
+        for (size_t k = 0; keeps && k < sizeof keys / sizeof *keys; k++) {
+            const foam_entry *v = foam_dict_find(e->dict, keys[k], 0);
+            if (v && (v->dict || !tokens_zero(v->tok, v->ntok)))
+                return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                                "%s:%d: patch '%s': alphat %s with a non-zero %s: buoyantBoussinesqPimpleFoam "
+                                "keeps it and adds it to the heat conduction there (alphaEff = nu/Pr + alphat); "
+                                "umppmFoam solves laminar flow with alphat = 0 (set it to 0, or use calculated)",
+                                v->file, v->line, e->key, type, keys[k]);
+        }
+    }
+    return UMP_OK;
+}
+
+/* p_rgh zeroGradient where U is fixed: buoyantBoussinesqPimpleFoam then
+ * lets the buoyancy flux phig = -gh_f snGrad(rhok) |S_f| cross the patch
+ * (non-zero at a wall hotter or colder than its cells); umppmFoam's
+ * pressure equation is in fluxes and keeps the flux U_b . S_f, i.e.
+ * fixedFluxPressure: a different answer, so refused by name. */
+static ump_status check_prgh_walls(const app *a, const char *tname, ump_err *err)
+{
+    for (int p = 0; p < a->pm->npatches; p++)
+        if (a->pm->patch[p].n > 0 && a->prgh->patch[p].type == FLD_BC_ZEROGRADIENT &&
+            fld_bc_is_fixed(a->U->patch[p].type))
+            return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                            "%s/%s/p_rgh: patch '%s': zeroGradient p_rgh where U is fixed (%s) is not implemented "
+                            "by umppmFoam: buoyantBoussinesqPimpleFoam lets the buoyancy flux through such a "
+                            "patch, umppmFoam keeps the flux of U as fixedFluxPressure does; use "
+                            "fixedFluxPressure, as OpenFOAM's buoyant tutorials do", a->case_dir,
+                            tname, a->pm->patch[p].name, fld_bc_name(a->U->patch[p].type));
+    return UMP_OK;
+}
+
 /* The buoyant part of the set-up: g, Boussinesq constants, T, p_rgh, p,
  * alphat (see the top of the file). */
 static ump_status read_buoyant(app *a, const char *tname, ump_err *err)
@@ -777,9 +861,12 @@ static ump_status read_buoyant(app *a, const char *tname, ump_err *err)
     snprintf(path, sizeof path, "%s/%s/alphat", a->case_dir, tname);
     if (foam_file_exists(path)) {
         foam_file *f = NULL;
-        printf("Reading field alphat (laminar: not used)\n\n");
-        UMP_CALL(foam_file_read(path, &f, err));
+        printf("Reading field alphat (laminar: zero, written as read)\n\n");
+        UMP_CALL(foam_read_text(path, &a->alphat_text, &a->alphat_len, err));
+        UMP_CALL(foam_file_parse(path, a->alphat_text, a->alphat_len, &f, err));
+        ump_status rc = check_alphat(f, path, err);
         foam_file_free(&f);
+        UMP_CALL(rc);
     }
     printf("Calculating field g.h (g = (%g %g %g), hRef = %g)\n\n", a->bu.g[0], a->bu.g[1], a->bu.g[2],
            a->bu.h_ref);
@@ -1284,6 +1371,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     if ((rc = read_start_field(&a, tname, "p", 1, a.bu.on, &a.p, err)) != UMP_OK ||
         (rc = read_start_field(&a, tname, "U", 3, 0, &a.U, err)) != UMP_OK ||
         (rc = check_reference(&a, a.bu.on ? a.prgh : a.p, a.bu.on ? "p_rgh" : "p", err)) != UMP_OK ||
+        (a.bu.on && (rc = check_prgh_walls(&a, tname, err)) != UMP_OK) ||
         (rc = settings(&a, &s, err)) != UMP_OK)
         goto done;
     s.t_start = t0; /* time-dependent boundary conditions without a value start here */

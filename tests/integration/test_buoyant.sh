@@ -33,9 +33,11 @@
 #      function object's snGrad value (2.210; OpenFOAM's 2.294).
 #   4. Restart from the 20 x 20 run: the particle T is read back from the
 #      cloud; foamToVTK shows the cloud's T.
+#      buoyantBoussinesqPimpleFoam restarts from the written time (alphat).
 #   5. Bad input ends in one error naming the file: a turbulence model, a
 #      missing Boussinesq constant, an unsupported T condition, a missing
-#      0/T, a function object on a patch that does not exist.
+#      0/T, a function object on a patch that does not exist, a non-zero
+#      fixed alphat, zeroGradient p_rgh on a wall.
 #   6. The annulus of Ng, Sheu & Hwang (2016) Section 4.4.1 (Ra = 1e5) on
 #      the hybrid gmsh mesh of tutorials/annulusSquareCylinder (460 cells,
 #      UMPPM*), t = 30 s, through that tutorial's Allrun, against OpenFOAM
@@ -309,6 +311,18 @@ if [ -d "$d/200" ]; then
     else
         echo "  FAIL restart:"; grep -E 'Restart|rror' "$d/log.umppmFoam.restart" | head -3; fail=1
     fi
+    # buoyantBoussinesqPimpleFoam goes on from the written time (it needs
+    # alphat there: umppmFoam wrote none until 2026-12-06)
+    o=$work/dvd20.bbpf
+    mkdir -p "$o" && cp -r "$d/constant" "$d/system" "$d/202" "$o/"
+    foam_set "$o" system/controlDict endTime 203
+    if run_in "$o" buoyantBoussinesqPimpleFoam buoyantBoussinesqPimpleFoam &&
+        grep -q '^End' "$o/log.buoyantBoussinesqPimpleFoam"; then
+        echo "  ok   buoyantBoussinesqPimpleFoam restarts from umppmFoam's time 202"
+    else
+        echo "  FAIL buoyantBoussinesqPimpleFoam cannot restart from time 202:"
+        grep -A4 'FOAM FATAL' "$o/log.buoyantBoussinesqPimpleFoam" | head -6; fail=1
+    fi
     n_t=$(sed -n '/^[0-9]/{p;q}' "$d/200/lagrangian/umppmCloud/T")
     check_range "cloud T entries" "$n_t" 400 400
     if (cd "$d" && foamToVTK -time 200 > log.foamToVTK 2>&1) &&
@@ -344,6 +358,13 @@ rm "$b/0/T"
 bad "no 0/T" "0/T: not found"
 echo "functions { Nu { type nusseltNumber; patch inner; length 1; kappa 1; } }" >> "$b/system/controlDict"
 bad "unknown patch" "controlDict: function object 'Nu': no patch 'inner'"
+# a wall's fixed non-zero alphat adds to its heat flux in
+# buoyantBoussinesqPimpleFoam, and zeroGradient p_rgh on a wall lets the
+# buoyancy flux through it there (both ran without a word until 2026-12-06)
+foam_set "$b" 0/alphat boundaryField/hot "{ type fixedValue; value uniform 0.01; }"
+bad "fixed alphat" "0/alphat:[0-9]+: patch 'hot': alphat fixedValue with a non-zero value"
+foam_set "$b" 0/p_rgh boundaryField/hot "{ type zeroGradient; }"
+bad "zeroGradient p_rgh" "0/p_rgh: patch 'hot': zeroGradient p_rgh where U is fixed"
 
 echo "== 6. annulus Ra = 1e5 against OpenFOAM on the same hybrid mesh"
 a=$work/annulus
