@@ -1132,8 +1132,19 @@ ump_status case_read_phases(const char *case_dir, case_phases *ph, ump_err *err)
                       "first, phases (%s %s), with its alpha.%s field, as interFoam's tutorials do",
                       e->file, e->line, ph->name[0], ph->name[1], ph->name[0], ph->rho[0], ph->name[1], ph->rho[1],
                       ph->name[1], ph->name[0], ph->name[1]);
-    if (rc == UMP_OK)
+    /* sigma: a value, or v1912's surfaceTensionModel dictionary
+     * sigma { type constant; sigma 0.07; } (or another model by type) */
+    const foam_dict *sd = rc == UMP_OK ? foam_dict_sub(d, "sigma") : NULL;
+    if (sd) {
+        const char *type = NULL;
+        rc = foam_get_word(sd, "type", &type, err);
+        if (rc == UMP_OK && strcmp(type, "constant") == 0)
+            rc = get_transport_constant(sd, "sigma", d_sigma, "kg/s^2", 0, 1, &ph->sigma, &ph->has_sigma, err);
+        else if (rc == UMP_OK)
+            snprintf(ph->sigma_model, sizeof ph->sigma_model, "%s", type);
+    } else if (rc == UMP_OK) {
         rc = get_transport_constant(d, "sigma", d_sigma, "kg/s^2", 0, 0, &ph->sigma, &ph->has_sigma, err);
+    }
     foam_file_free(&f);
     return rc;
 }

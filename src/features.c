@@ -182,9 +182,10 @@ static ump_status check_viscosity(const char *case_dir, ump_err *err)
             continue;
         char t[128];
         rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                      "%s:%d: %s %s: non-Newtonian viscosity is not implemented by umppmFoam (Newtonian nu "
-                      "only: transportModel Newtonian; nu ...;); use nonNewtonianIcoFoam", e->file, e->line,
-                      keys[k], first_word(e, t, sizeof t));
+                      "%s:%d: %s %s: non-Newtonian viscosity is not implemented by %s (Newtonian nu "
+                      "only: transportModel Newtonian; nu ...;); use %s", e->file, e->line,
+                      keys[k], first_word(e, t, sizeof t), feat_solver,
+                      strcmp(feat_solver, "umppmFoam") == 0 ? "nonNewtonianIcoFoam" : feat_instead);
     }
     foam_file_free(&f);
     return rc;

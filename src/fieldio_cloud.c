@@ -136,8 +136,8 @@ static ump_status parse_positions(const foam_file *f, size_t *n, double **pos, u
     char w[512];
     if (f->binary)
         return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                        "%s: binary lagrangian positions are not read by umppmFoam (convert the cloud "
-                        "with foamFormatConvert and writeFormat ascii)", f->path);
+                        "%s: binary lagrangian positions are not read by %s (convert the cloud "
+                        "with foamFormatConvert and writeFormat ascii)", f->path, ump_solver);
     if (nt < 2 || t[0].type != FOAM_TOK_LABEL || t[0].v.label < 0 || !is_punct(&t[1], '('))
         return UMP_FAIL(err, UMP_ERR_PARSE, "%s: expected 'N (' starting the positions list", f->path);
     size_t cnt = (size_t)t[0].v.label;

@@ -260,8 +260,8 @@ static ump_status key_default_word(const foam_dict *d, const char *key, const ch
     else
         tokens_to_text(&b, x->tok, x->ntok);
     ump_status rc = UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: patch '%s': %s: '%s %s' is not implemented by "
-                             "umppmFoam (only %s %s: %s)", x->file, x->line, patch, bc, key,
-                             b.s ? b.s : "", key, dflt, why);
+                             "%s (only %s %s: %s)", x->file, x->line, patch, bc, key,
+                             b.s ? b.s : "", ump_solver, key, dflt, why);
     free(b.s);
     return rc;
 }
@@ -273,17 +273,17 @@ static ump_status key_refused(const foam_dict *d, const char *key, const char *b
     const foam_entry *x = foam_dict_find(d, key, 0);
     if (!x)
         return UMP_OK;
-    return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: patch '%s': %s: key '%s' is not implemented by umppmFoam "
-                    "(%s)", x->file, x->line, patch, bc, key, why);
+    return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: patch '%s': %s: key '%s' is not implemented by %s "
+                    "(%s)", x->file, x->line, patch, bc, key, ump_solver, why);
 }
 
 #define WHY_PHI "the solver's own face flux"
 #define WHY_RHO "kinematic pressure and volumetric flow, no density"
 
-/* The keys of v1912's boundary conditions that umppmFoam implements only
- * in part: refused by name unless they have the value umppmFoam implements. */
-static ump_status check_bc_keys(const foam_dict *d, fld_bc_type t, const fld_field *fld, const char *type,
-                                const char *patch, const foam_entry *te, ump_err *err)
+/* The keys of v1912's boundary conditions that the solvers implement only
+ * in part: refused by name unless they have the value implemented. */
+static ump_status check_bc_keys(const foam_dict *d, fld_bc_type t, const char *type, const char *patch,
+                                ump_err *err)
 {
     switch (t) {
     case FLD_BC_INLETOUTLET:
@@ -293,15 +293,9 @@ static ump_status check_bc_keys(const foam_dict *d, fld_bc_type t, const fld_fie
     case FLD_BC_TOTALPRESSURE: {
         /* v1912 totalPressure: kinematic pressure (dimensions m^2/s^2)
          * with psi none is p0 - 0.5 (1 - pos0(phi)) |U|^2; rho is used only
-         * for a pressure in Pa, gamma only with psi */
-        static const double kin[7] = {0, 2, -2, 0, 0, 0, 0};
-        for (int k = 0; k < 7; k++)
-            if (fld->dims[k] != kin[k])
-                return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: patch '%s': totalPressure on a pressure of "
-                                "dimensions [%g %g %g %g %g %g %g]: umppmFoam implements kinematic pressure "
-                                "[0 2 -2 0 0 0 0] only (as icoFoam)", te->file, te->line, patch, fld->dims[0],
-                                fld->dims[1], fld->dims[2], fld->dims[3], fld->dims[4], fld->dims[5],
-                                fld->dims[6]);
+         * for a pressure in Pa, gamma only with psi. The pressure's
+         * dimensions are the solver's to check (umppmFoam: kinematic, in
+         * app.c; meshlessFoam writes interFoam's p_rgh in Pa back as read) */
         UMP_CALL(key_default_word(d, "phi", "phi", type, patch, WHY_PHI, err));
         UMP_CALL(key_default_word(d, "U", "U", type, patch, "the solver's velocity", err));
         UMP_CALL(key_default_word(d, "rho", "rho", type, patch, WHY_RHO, err));
@@ -310,8 +304,8 @@ static ump_status check_bc_keys(const foam_dict *d, fld_bc_type t, const fld_fie
         double gamma = 1;
         if (g && (foam_get_scalar(d, "gamma", &gamma, err) != UMP_OK || gamma != 1))
             return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: patch '%s': totalPressure: 'gamma %g' is not "
-                            "implemented by umppmFoam (only gamma 1: incompressible flow, p0 - |U|^2/2)",
-                            g->file, g->line, patch, gamma);
+                            "implemented by %s (only gamma 1: incompressible flow, p0 - |U|^2/2)",
+                            g->file, g->line, patch, gamma, ump_solver);
         return UMP_OK;
     }
     case FLD_BC_UNIFORMFIXEDVALUE:
@@ -323,16 +317,16 @@ static ump_status check_bc_keys(const foam_dict *d, fld_bc_type t, const fld_fie
         UMP_CALL(key_refused(d, "massFlowRate", type, patch,
                              "it needs the density rho; give volumetricFlowRate instead", err));
         UMP_CALL(key_default_word(d, "rho", "rho", type, patch, WHY_RHO, err));
-        UMP_CALL(key_refused(d, "rhoInlet", type, patch, "a density for massFlowRate; umppmFoam has "
-                             "volumetricFlowRate only", err));
+        UMP_CALL(key_refused(d, "rhoInlet", type, patch, "a density for massFlowRate; only "
+                             "volumetricFlowRate is implemented", err));
         {
             int extrapolate = 0;
             UMP_CALL(foam_get_bool_or(d, "extrapolateProfile", 0, &extrapolate, err));
             if (extrapolate) {
                 const foam_entry *x = foam_dict_find(d, "extrapolateProfile", 0);
                 return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: patch '%s': flowRateInletVelocity: "
-                                "'extrapolateProfile true' is not implemented by umppmFoam (only the uniform "
-                                "profile, extrapolateProfile false)", x->file, x->line, patch);
+                                "'extrapolateProfile true' is not implemented by %s (only the uniform "
+                                "profile, extrapolateProfile false)", x->file, x->line, patch, ump_solver);
             }
         }
         return UMP_OK;
@@ -373,8 +367,8 @@ static ump_status read_patch_entry(const foam_entry *e, const pmesh *pm, int p, 
             strncat(list, fld_bc_name((fld_bc_type)k), sizeof list - strlen(list) - 1);
         }
         return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                        "%s:%d: patch '%s': boundary condition type '%s' is not supported by umppmFoam "
-                        "(supported: %s)", te->file, te->line, pp->name, type, list);
+                        "%s:%d: patch '%s': boundary condition type '%s' is not supported by %s "
+                        "(supported: %s)", te->file, te->line, pp->name, type, ump_solver, list);
     }
     /* constraint types must sit on their own patch type, and only there */
     static const struct { pmesh_patch_kind k; fld_bc_type t; } cons[] = {
@@ -395,7 +389,7 @@ static ump_status read_patch_entry(const foam_entry *e, const pmesh *pm, int p, 
     if (fp->type == FLD_BC_TOTALPRESSURE && ncomp != 1)
         return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: patch '%s': %s applies to the pressure (a scalar field) only",
                         te->file, te->line, pp->name, type);
-    UMP_CALL(check_bc_keys(d, fp->type, fld, type, pp->name, te, err));
+    UMP_CALL(check_bc_keys(d, fp->type, type, pp->name, err));
     /* v1912 requires `value` of these (pressureInletOutletVelocity reads it
      * unconditionally) */
     int need_value = fp->type == FLD_BC_FIXEDVALUE || fp->type == FLD_BC_MOVINGWALLVELOCITY ||

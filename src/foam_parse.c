@@ -832,9 +832,9 @@ static int is_include_directive(const char *s)
 static ump_status unsupported_directive(parser *p, const foam_token *t)
 {
     return FOAM_FAIL(p->err, UMP_ERR_UNSUPPORTED,
-                    "%s:%d: directive %s is not supported (umppmFoam evaluates no code "
+                    "%s:%d: directive %s is not supported (%s evaluates no code "
                     "or expressions)",
-                    t->file, t->line, t->v.str);
+                    t->file, t->line, t->v.str, ump_solver);
 }
 
 /* ---- values -------------------------------------------------------------------- */

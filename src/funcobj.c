@@ -93,7 +93,7 @@ static ump_status read_sfv(const foam_dict *d, const char *name, fob_sfv *f, ump
     if (strcmp(rt, "patch") != 0) {
         const foam_entry *e = foam_dict_find(d, "regionType", 0);
         return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: function object '%s': regionType '%s' is not supported "
-                        "by umppmFoam (only: patch)", e->file, e->line, name, rt);
+                        "by %s (only: patch)", e->file, e->line, name, rt, ump_solver);
     }
     UMP_CALL(read_common(d, name, "name", &f->c, err));
     UMP_CALL(foam_get_word(d, "operation", &op, err));
@@ -110,7 +110,7 @@ static ump_status read_sfv(const foam_dict *d, const char *name, fob_sfv *f, ump
     if (wf) {
         const foam_entry *e = foam_dict_find(d, "writeFields", 0);
         return UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: function object '%s': writeFields true is not supported "
-                        "by umppmFoam (set it false)", e->file, e->line, name);
+                        "by %s (set it false)", e->file, e->line, name, ump_solver);
     }
     const foam_entry *e = foam_dict_find(d, "fields", 0);
     if (!e || e->dict)
@@ -199,6 +199,31 @@ ump_status fob_read(const char *case_dir, fob_list *L, ump_err *err)
     foam_file_free(&file);
     if (rc != UMP_OK)
         fob_free(L);
+    return rc;
+}
+
+ump_status fob_names(const char *case_dir, char *buf, size_t size, ump_err *err)
+{
+    fob_list L; /* only its list of names is used */
+    memset(&L, 0, sizeof L);
+    char path[4096];
+    snprintf(path, sizeof path, "%s/system/controlDict", case_dir);
+    foam_file *file = NULL;
+    UMP_CALL(foam_file_read(path, &file, err));
+    ump_status rc = UMP_OK;
+    const foam_dict *fd = foam_dict_sub(file->dict, "functions");
+    for (size_t i = 0; fd && i < fd->n && rc == UMP_OK; i++) {
+        const foam_entry *e = &fd->e[i];
+        const char *type = NULL;
+        int enabled = 1;
+        if (!e->dict)
+            note_ignored(&L, e->key, "not a dictionary");
+        else if ((rc = foam_get_word(e->dict, "type", &type, err)) == UMP_OK &&
+                 (rc = foam_get_bool_or(e->dict, "enabled", 1, &enabled, err)) == UMP_OK && enabled)
+            note_ignored(&L, e->key, type);
+    }
+    foam_file_free(&file);
+    snprintf(buf, size, "%s", rc == UMP_OK ? L.ignored : "");
     return rc;
 }
 

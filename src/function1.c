@@ -241,11 +241,11 @@ static ump_status read_table_options(const foam_dict *coeffs, f1 *f, const char 
         f->bounds = F1_REPEAT;
     else
         return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: %s: table outOfBounds '%s' is not implemented by "
-                        "umppmFoam (clamp, the default, or repeat)", e->file, e->line, what, ob);
+                        "%s (clamp, the default, or repeat)", e->file, e->line, what, ob, ump_solver);
     if (strcmp(is, "linear") != 0) {
         e = foam_dict_find(coeffs, "interpolationScheme", 0);
         return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: %s: table interpolationScheme '%s' is not "
-                        "implemented by umppmFoam (linear, the default)", e->file, e->line, what, is);
+                        "implemented by %s (linear, the default)", e->file, e->line, what, is, ump_solver);
     }
     return UMP_OK;
 }
@@ -308,10 +308,10 @@ static ump_status unknown_type(const char *file, int line, const char *what, con
 {
     if ((flags & F1_PATCH) && strcmp(w, "nonuniform") == 0)
         return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: %s: 'nonuniform' (a value per face) is not "
-                        "implemented by umppmFoam; use fixedValue with a nonuniform value", file, line, what);
-    return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: %s: Function1 type '%s' is not implemented by umppmFoam "
+                        "implemented by %s; use fixedValue with a nonuniform value", file, line, what, ump_solver);
+    return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s:%d: %s: Function1 type '%s' is not implemented by %s "
                     "(implemented: constant, uniform, table, sine, square, or a bare value)", file, line, what,
-                    w);
+                    w, ump_solver);
 }
 
 static ump_status read_entry(const foam_dict *d, const char *key, int ncomp, unsigned flags, const char *what,

@@ -112,6 +112,7 @@ static int run(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+    ump_solver = "meshlessFoam";
     int rc = run(argc, argv);
     errno = 0;
     if ((fflush(stdout) != 0 || ferror(stdout)) && rc == 0) {

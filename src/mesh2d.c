@@ -126,8 +126,8 @@ static ump_status find_plane(const pmesh *pm, mesh2d *m, const char *dir, ump_er
         if (pp->kind == PMESH_WEDGE)
             return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
                             "%s/boundary: patch '%s' is of type wedge: axisymmetric cases are not supported "
-                            "(umppmFoam needs a planar 2-D mesh with empty front and back patches)",
-                            dir, pp->name);
+                            "(%s needs a planar 2-D mesh with empty front and back patches)",
+                            dir, pp->name, ump_solver);
         if (pp->kind != PMESH_EMPTY)
             continue;
         for (ump_idx f = pp->start; f < pp->start + pp->n; f++) {
@@ -140,8 +140,8 @@ static ump_status find_plane(const pmesh *pm, mesh2d *m, const char *dir, ump_er
     }
     if (!any)
         return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                        "%s/boundary: no face is on an 'empty' patch: this is a 3-D mesh; umppmFoam "
-                        "solves 2-D cases (one cell thick, front and back patches of type empty)", dir);
+                        "%s/boundary: no face is on an 'empty' patch: this is a 3-D mesh; %s "
+                        "solves 2-D cases (one cell thick, front and back patches of type empty)", dir, ump_solver);
     int k = 0;
     for (int i = 1; i < 3; i++)
         if (nsum[i] > nsum[k])
@@ -186,9 +186,9 @@ static ump_status find_plane(const pmesh *pm, mesh2d *m, const char *dir, ump_er
                                 "volume)", dir, (long)pm->owner[f], (long)f, pp->name, a);
             if (!(fabs(A[k]) > (1 - 1e-6) * a))
                 return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                                "%s/faces: face %ld of empty patch '%s' is not normal to %c: umppmFoam "
+                                "%s/faces: face %ld of empty patch '%s' is not normal to %c: %s "
                                 "needs the empty sides to be planes normal to x, y or z",
-                                dir, (long)f, pp->name, "xyz"[k]);
+                                dir, (long)f, pp->name, "xyz"[k], ump_solver);
             for (ump_idx i = pm->face_off[f]; i < pm->face_off[f + 1]; i++) {
                 double z = pm->points[3 * (size_t)pm->face_pts[i] + k];
                 if (fabs(z - zmin) > tol && fabs(z - zmax) > tol)
@@ -517,9 +517,9 @@ static ump_status build_faces(const pmesh *pm, mesh2d *m, const char *dir,
                                 "%s/boundary: cell %ld owns face %ld of cyclic patch '%s' and its partner "
                                 "face %ld of '%s': the mesh is one cell wide between the pair, so the cell "
                                 "is its own periodic neighbour and its stencil (least-squares gradient, "
-                                "Eq. 26) is degenerate; umppmFoam needs at least 2 cells between cyclic "
+                                "Eq. 26) is degenerate; %s needs at least 2 cells between cyclic "
                                 "patches (3 or more for a centred stencil)",
-                                dir, (long)pm->owner[fa], (long)fa, pa->name, (long)fb, pb->name);
+                                dir, (long)pm->owner[fa], (long)fa, pa->name, (long)fb, pb->name, ump_solver);
             set_face(m, i, v0, v1, n, len);
             m->owner[i] = pm->owner[fa];
             m->neigh[i] = pm->owner[fb];

@@ -9,9 +9,12 @@
  *                          also carries the output fields;
  *   0/alpha.<liquid>       the initial liquid region (setFields), seeded on
  *                          a lattice of the meshless spacing; 0/U gives the
- *                          particles' initial velocity (p_rgh is not read:
- *                          the particles' pressure needs no boundary
- *                          conditions; p and p_rgh are written `calculated`);
+ *                          particles' initial velocity; 0/p_rgh is read
+ *                          (as interFoam, which needs it) for its boundary
+ *                          conditions, written back with every time so
+ *                          that interFoam can restart there (the particles'
+ *                          pressure needs none); p is written `calculated`,
+ *                          as interFoam's;
  *   constant/transportProperties  phases (liquid gas): the liquid's nu and
  *                          rho; the gas and sigma are read and not
  *                          simulated (the log says so);
@@ -46,6 +49,7 @@
 #include "umppm/fieldio.h"
 #include "umppm/foam.h"
 #include "umppm/fpm.h"
+#include "umppm/funcobj.h"
 #include "umppm/function1.h"
 #include "umppm/mesh2d.h"
 #include "umppm/mlseed.h"
@@ -391,25 +395,51 @@ static ump_status read_case(mlapp *a, const char *tname, ump_err *err)
                   "patches", a->case_dir, a->pm->npatches);
         UMP_CALL(read_wall_motion(a, tname, err));
     }
-    /* p and p_rgh: calculated (their values are the particles'; interFoam's
-     * boundary conditions on p_rgh are not read: the pressure of the
-     * particles needs none) */
+    /* p_rgh: read for its boundary conditions, which are written back (the
+     * values are the particles'; their pressure needs no conditions); it
+     * had not been read until 2026-12-06, and the `calculated` patches
+     * written stopped interFoam restarting there */
+    UMP_CALL(read_field(a, tname, "p_rgh", 1, &a->prgh, err));
+    static const double pa[7] = {1, -1, -2, 0, 0, 0, 0}; /* kg m^-1 s^-2, as interFoam */
+    for (int k = 0; k < 7; k++)
+        if (a->prgh->dims[k] != pa[k])
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s/%s/p_rgh: dimensions [%g %g %g %g %g %g %g]; p_rgh must have "
+                            "[1 -1 -2 0 0 0 0] (Pa, as interFoam)", a->case_dir, tname, a->prgh->dims[0],
+                            a->prgh->dims[1], a->prgh->dims[2], a->prgh->dims[3], a->prgh->dims[4],
+                            a->prgh->dims[5], a->prgh->dims[6]);
+    /* p: calculated, as interFoam's (p_rgh + rho gh) */
     ump_idx *sizes = ump_alloc_array((size_t)a->pm->npatches + 1, sizeof *sizes);
     UMP_CHECK(sizes, err, UMP_ERR_NOMEM, "out of memory");
     for (int p = 0; p < a->pm->npatches; p++)
         sizes[p] = a->pm->patch[p].n;
     ump_status rc = fld_create("p", 1, m->ncells, a->pm->npatches, sizes, &a->p, err);
-    if (rc == UMP_OK)
-        rc = fld_create("p_rgh", 1, m->ncells, a->pm->npatches, sizes, &a->prgh, err);
     free(sizes);
     UMP_CALL(rc);
-    fld_field *pf[2] = {a->p, a->prgh};
-    for (int q = 0; q < 2; q++) {
-        pf[q]->dims[0] = 1, pf[q]->dims[1] = -1, pf[q]->dims[2] = -2; /* kg m^-1 s^-2 */
-        for (int p = 0; p < a->pm->npatches; p++)
-            if (a->pm->patch[p].kind == PMESH_EMPTY)
-                pf[q]->patch[p].type = FLD_BC_EMPTY;
+    memcpy(a->p->dims, pa, sizeof pa);
+    for (int p = 0; p < a->pm->npatches; p++)
+        if (a->pm->patch[p].kind == PMESH_EMPTY)
+            a->p->patch[p].type = FLD_BC_EMPTY;
+    return UMP_OK;
+}
+
+/* Seeding fills the cells with alpha >= 1/2 (mlseed.h): where alpha is
+ * fractional over a large region (alpha 0.5 everywhere had filled the
+ * whole tank until 2026-12-06) the liquid seeded is not alpha's, so more
+ * than 10 % between the two volumes is refused by name. */
+static ump_status check_alpha_volume(const mlapp *a, const char *tname, ump_err *err)
+{
+    const mesh2d *m = a->m;
+    double v_alpha = 0, v_cells = 0;
+    for (ump_idx c = 0; c < m->ncells; c++) {
+        v_alpha += a->alpha->internal[c] * m->area[c];
+        v_cells += a->alpha->internal[c] >= 0.5 ? m->area[c] : 0;
     }
+    if (fabs(v_cells - v_alpha) > 0.1 * v_alpha)
+        return UMP_FAIL(err, UMP_ERR_INPUT,
+                        "%s/%s/alpha.%s: the cells with alpha >= 0.5, which meshlessFoam fills with particles, "
+                        "hold %g m^2 of the plane, but alpha holds %g m^2 (sum of alpha times cell area): alpha "
+                        "is fractional over too large a region to seed; give the liquid as alpha 1 and the gas "
+                        "as alpha 0 (setFields)", a->case_dir, tname, a->ph.name[0], v_cells, v_alpha);
     return UMP_OK;
 }
 
@@ -445,6 +475,10 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
      * wall faces (the boundary particles), then ghosts behind the walls as
      * deep as the free-surface test reaches (docs/METHOD.md section 11). */
     double wall_depth = P->re_n * l0, thick = fmax(2 * P->re_n, P->re_lap + 0.5) * l0;
+    char cdir0[4600];
+    snprintf(cdir0, sizeof cdir0, "%s/%s/lagrangian/%s/positions", a->case_dir, tname, a->ml.cloud_name);
+    if (!foam_file_exists(cdir0))
+        UMP_CALL(check_alpha_volume(a, tname, err));
     if (is_fpm)
         wall_depth = thick = (a->ml.re_s + 1) * l0;
     UMP_CALL(part_create(1024, &a->s, err));
@@ -1090,6 +1124,14 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
     if (a.ph.has_sigma && a.ph.sigma != 0)
         printf("Surface tension: sigma %g is read and not simulated (not implemented by meshlessFoam)\n",
                a.ph.sigma);
+    else if (a.ph.sigma_model[0])
+        printf("Surface tension: sigma { type %s; } is read and not simulated (not implemented by "
+               "meshlessFoam)\n", a.ph.sigma_model);
+    char fos[512];
+    if ((rc = fob_names(case_dir, fos, sizeof fos, err)) != UMP_OK)
+        goto done;
+    if (fos[0])
+        printf("--> meshlessFoam Warning: function objects are not run by meshlessFoam (ignored): %s\n", fos);
     printf("Gravity: (%g %g) in the plane (%c %c)\n\n", a.g2[0], a.g2[1], "xyz"[a.m->ax[0]], "xyz"[a.m->ax[1]]);
     if (a.nmoving)
         for (int p = 0; p < a.pm->npatches; p++)

@@ -437,7 +437,7 @@ static ump_status check_duplicate_faces(const pmesh *m, ump_err *err)
                           "(owners %ld and %ld%s; checkMesh -allTopology: duplicate faces)",
                           d, (long)g, (long)f, (long)(e - b), (long)m->owner[g], (long)m->owner[f],
                           bf && bg && m->owner[f] != m->owner[g]
-                              ? ": two boundary faces in one place, a baffle, which umppmFoam does not support"
+                              ? ": two boundary faces in one place, a baffle, which is not supported"
                               : "");
             break;
         }

@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: GPL-3.0-or-later
  * ump.c -- status codes, error records and checked allocation.
  *
- * The only file-scope state is the allocation test hook and the running
- * total of bytes requested: both are diagnostics, never read by numerics.
+ * The only file-scope state is the solver's name for messages, the
+ * allocation test hook and the running total of bytes requested: none is
+ * read by numerics.
  */
 #include "umppm/ump.h"
 
@@ -11,6 +12,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+const char *ump_solver = "umppmFoam";
 
 /* atomic: allocations also happen in threads (per-thread work buffers,
  * concurrent readers); relaxed order, as neither value orders anything */

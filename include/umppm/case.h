@@ -277,13 +277,15 @@ typedef struct case_motion {
 ump_status case_read_motion(const char *case_dir, case_motion *mo, ump_err *err);
 
 /* interFoam's constant/transportProperties: phases (liquid gas); each
- * phase { transportModel Newtonian; nu; rho; }; sigma. name[0] is the
- * liquid (its alpha.<name> is the volume fraction). */
+ * phase { transportModel Newtonian; nu; rho; }; sigma (a value, or v1912's
+ * sigma { type constant; sigma ...; }, or another surfaceTensionModel by
+ * name). name[0] is the liquid (its alpha.<name> is the volume fraction). */
 typedef struct case_phases {
     char name[2][64];
     double nu[2], rho[2];
-    double sigma;
+    double sigma;           /* constant sigma, where has_sigma */
     int has_sigma;
+    char sigma_model[64];   /* a surfaceTensionModel other than constant, or "" */
 } case_phases;
 ump_status case_read_phases(const char *case_dir, case_phases *ph, ump_err *err);
 

@@ -117,6 +117,9 @@ typedef struct fob_list {
  * empty list). Missing or bad entries are errors naming file and line. */
 ump_status fob_read(const char *case_dir, fob_list *L, ump_err *err);
 void fob_free(fob_list *L);
+/* "name (type), ..." of every enabled entry of the functions dictionary
+ * into buf ("" where there is none): for a solver that runs none of them. */
+ump_status fob_names(const char *case_dir, char *buf, size_t size, ump_err *err);
 /* Give function object c its patch's faces (copies of the n entries of
  * face, area, x3). */
 ump_status fob_set_faces(fob_common *c, size_t n, const ump_idx *face, const double *area, const double *x3,

@@ -46,6 +46,10 @@ ump_status ump_fail(ump_err *err, ump_status code, const char *src_file,
 #endif
     ;
 
+/* The running solver's name ("umppmFoam" unless main sets it), for the
+ * messages of the modules both solvers share. */
+extern const char *ump_solver;
+
 /* Name of a status code ("I/O error", ...). */
 const char *ump_status_name(ump_status s);
 

@@ -169,7 +169,7 @@ check totalPressure-phi "$P: totalPressure: 'phi phiAbs' is not implemented .*th
     "$PIOV" "$U_OUT" "$TP phi phiAbs;" "$P_OUT"
 check totalPressure-no-p0 "$P: totalPressure needs a 'p0' entry" "$PIOV" "$U_OUT" "type totalPressure;" "$P_OUT"
 check totalPressure-on-U "$F: totalPressure applies to the pressure" "$TP" "$U_OUT" "$P_IN" "$P_OUT"
-check totalPressure-Pa "$P: totalPressure on a pressure of dimensions \\[1 -1 -2 0 0 0 0\\].*kinematic pressure" \
+check totalPressure-Pa "0/p: dimensions \\[1 -1 -2 0 0 0 0\\]; p must have \\[0 2 -2 0 0 0 0\\] \\(kinematic pressure" \
     "$PIOV" "$U_OUT" "$TP" "$P_OUT" "[1 -1 -2 0 0 0 0]"
 check totalPressure-and-fixed-U "patch 'inlet': both U and p are fixed" \
     "type fixedValue; value uniform (1 0 0);" "$U_OUT" "$TP" "$P_OUT"
