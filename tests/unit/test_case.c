@@ -486,14 +486,22 @@ static void test_field_matching(void **state)
     assert_string_equal(f->patch[1].extra[0].text, "phi");
     assert_int_equal(f->patch[3].type, FLD_BC_EMPTY); /* from setConstraintTypes' empty group */
     fld_free(&f);
+    /* an empty patch left out, or reached only by a regex, is empty (as
+     * OpenFOAM's GeometricBoundaryField: empty before the regexes) */
+    write2(d, "U", VHDR, "internalField uniform (1 0 0);\nboundaryField { \".*\" { type zeroGradient; } }\n");
+    if (fio_read_field(path, pm, 3, &f, &err) != UMP_OK)
+        fail_msg("%s", err.msg);
+    assert_int_equal(f->patch[0].type, FLD_BC_ZEROGRADIENT);
+    assert_int_equal(f->patch[3].type, FLD_BC_EMPTY);
+    fld_free(&f);
 
     struct { const char *body; const char *needle; } bad[] = {
         {"internalField uniform (1 0 0);\nboundaryField { inlet { type fancy; } outlet { type zeroGradient; }"
          " sides { type noSlip; } frontAndBack { type empty; } }\n", "'fancy' is not supported"},
         {"internalField uniform (1 0 0);\nboundaryField { inlet { type zeroGradient; }"
          " sides { type noSlip; } frontAndBack { type empty; } }\n", "no entry for patch 'outlet'"},
-        {"internalField uniform (1 0 0);\nboundaryField { \".*\" { type zeroGradient; } }\n",
-         "mesh type 'empty'"},
+        {"internalField uniform (1 0 0);\nboundaryField { \".*\" { type zeroGradient; } frontAndBack "
+         "{ type zeroGradient; } }\n", "mesh type 'empty'"},
         {"internalField nonuniform List<vector> 3((1 0 0) (1 0 0) (1 0 0));\nboundaryField { }\n",
          "3 values for 2 cells"},
         {"internalField uniform (1 0 0);\nboundaryField { inlet { type fixedValue; } \".*\" { type empty; } }\n",
