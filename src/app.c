@@ -355,6 +355,8 @@ static ump_status write_phi(app *a, const char *dir, const char *tname, const fi
     return rc;
 }
 
+static ump_status write_digest(const app *a, const char *dir, const char *tname, ump_err *err);
+
 static ump_status write_time(app *a, const rt_time *t, ump_err *err)
 {
     fio_timedir td;
@@ -410,7 +412,7 @@ static ump_status write_time(app *a, const rt_time *t, ump_err *err)
     if ((rc = fio_write_uniform_time(td.tmp_dir, t->name, t->value, t->name, t->index, t->delta_t,
                                      t->delta_t0, a->ctl.write_precision, a->ctl.time_format_fixed,
                                      err)) != UMP_OK ||
-        (rc = fio_timedir_commit(&td, err)) != UMP_OK)
+        (rc = write_digest(a, td.tmp_dir, t->name, err)) != UMP_OK || (rc = fio_timedir_commit(&td, err)) != UMP_OK)
         goto fail;
     free(pos);
     free(vel);
@@ -434,6 +436,100 @@ fail:
     free(vel);
     fio_timedir_abort(&td);
     return rc;
+}
+
+/* The fields' digest written beside the cloud (uniform/umppmFoam): the sums
+ * of each component of U (and T) over the cells and of their squares. A
+ * restart compares it with the fields it reads: fields that another solver
+ * (icoFoam writing into the same time directory), mapFields or setFields
+ * changed after the cloud was written do not go with the particles, which
+ * would continue the old run (U 20 % off, without a word, until
+ * 2026-12-06). */
+static void field_digest(const fld_field *f, double sum[3], double *sumsq)
+{
+    sum[0] = sum[1] = sum[2] = *sumsq = 0;
+    for (ump_idx c = 0; c < f->ncells; c++)
+        for (int k = 0; k < f->ncomp; k++) {
+            double v = f->internal[(size_t)c * (size_t)f->ncomp + (size_t)k];
+            sum[k] += v;
+            *sumsq += v * v;
+        }
+}
+
+static ump_status write_digest(const app *a, const char *dir, const char *tname, ump_err *err)
+{
+    double su[3], qu, st[3] = {0, 0, 0}, qt = 0;
+    field_digest(a->U, su, &qu);
+    if (a->T)
+        field_digest(a->T, st, &qt);
+    char body[1024];
+    snprintf(body, sizeof body,
+             "// the fields written with the cloud: a restart from its particles checks that U (and T) are\n"
+             "// still these (sums over the cells), else it needs -reseed\n"
+             "cloudName       %s;\nwriteFormat     %s;\nwritePrecision  %d;\nnCells          %ld;\n"
+             "U_sum           (%.17g %.17g %.17g);\nU_sumSqr        %.17g;\n",
+             a->um.cloud_name, a->ctl.write_binary ? "binary" : "ascii", a->ctl.write_precision,
+             (long)a->U->ncells, su[0], su[1], su[2], qu);
+    if (a->T) {
+        size_t n = strlen(body);
+        snprintf(body + n, sizeof body - n, "T_sum           %.17g;\nT_sumSqr        %.17g;\n", st[0], qt);
+    }
+    return fio_write_uniform_dict(dir, tname, "umppmFoam", body, err);
+}
+
+/* Round-off of a field written at writePrecision p (binary: none). */
+static double digest_tol(int binary, int prec)
+{
+    return binary ? 1e-12 : 2 * pow(10, 1 - (prec > 0 ? prec : 6));
+}
+
+/* The check of write_digest's file at a restart from the cloud. */
+static ump_status check_digest(const app *a, const char *dir, const char *tname, ump_err *err)
+{
+    char path[4600];
+    snprintf(path, sizeof path, "%s/uniform/umppmFoam", dir);
+    if (!foam_file_exists(path))
+        return UMP_OK; /* written before 2026-12-06, or not by umppmFoam */
+    foam_file *f = NULL;
+    UMP_CALL(foam_file_read(path, &f, err));
+    const char *fmt = NULL;
+    int64_t prec = 6, nc = 0;
+    double su[3], qu, st = 0, qt = 0;
+    ump_status rc;
+    if ((rc = foam_get_word_or(f->dict, "writeFormat", "ascii", &fmt, err)) != UMP_OK ||
+        (rc = foam_get_label_or(f->dict, "writePrecision", 6, &prec, err)) != UMP_OK ||
+        (rc = foam_get_label(f->dict, "nCells", &nc, err)) != UMP_OK ||
+        (rc = foam_get_vector(f->dict, "U_sum", su, err)) != UMP_OK ||
+        (rc = foam_get_scalar(f->dict, "U_sumSqr", &qu, err)) != UMP_OK ||
+        (a->T && foam_dict_find(f->dict, "T_sum", 0) &&
+         ((rc = foam_get_scalar(f->dict, "T_sum", &st, err)) != UMP_OK ||
+          (rc = foam_get_scalar(f->dict, "T_sumSqr", &qt, err)) != UMP_OK))) {
+        foam_file_free(&f);
+        return rc;
+    }
+    int binary = strcmp(fmt, "binary") == 0;
+    foam_file_free(&f);
+    /* the round-off of the writes: the one recorded, or a conversion since
+     * (foamFormatConvert) at this controlDict's precision */
+    double tol = fmax(digest_tol(binary, (int)prec), digest_tol(a->ctl.write_binary, a->ctl.write_precision));
+    double ru[3], rq, rt[3], rtq = 0;
+    field_digest(a->U, ru, &rq);
+    double n = (double)a->U->ncells, scale = sqrt(n * fmax(qu, rq)) + 1e-300;
+    int same = (int64_t)a->U->ncells == nc && fabs(rq - qu) <= 2 * tol * fmax(qu, rq) + 1e-300;
+    for (int k = 0; k < 3; k++)
+        same &= fabs(ru[k] - su[k]) <= tol * scale;
+    if (a->T && qt > 0) {
+        field_digest(a->T, rt, &rtq);
+        same &= fabs(rt[0] - st) <= tol * sqrt(n * fmax(qt, rtq)) && fabs(rtq - qt) <= 2 * tol * fmax(qt, rtq);
+    }
+    if (!same)
+        return UMP_FAIL(err, UMP_ERR_INPUT,
+                        "%s/lagrangian/%s: the fields of time %s are not those written with this particle cloud (another "
+                        "solver writing into the time directory, mapFields or setFields changed them: sum of "
+                        "|U|^2 %.9g, written %.9g); its particles would continue the run that wrote them; run "
+                        "with -reseed to seed new particles from the fields of time %s", dir,
+                        a->um.cloud_name, tname, rq, qu, tname);
+    return UMP_OK;
 }
 
 /* Restart: particles of the start time's cloud replace the seeded ones. */
@@ -472,6 +568,7 @@ static ump_status restart_cloud(app *a, const char *tname, ump_err *err)
     double *pos = NULL, *vel = NULL, *xy = NULL, *T = NULL;
     int64_t *id = NULL;
     ump_idx *cell = NULL;
+    UMP_CALL(check_digest(a, dir, tname, err));
     UMP_CALL(fio_read_cloud(dir, a->um.cloud_name, &n, &pos, &vel, &id, &cell, err));
     ump_status rc = UMP_OK;
     snprintf(path, sizeof path, "%s/lagrangian/%s/T", dir, a->um.cloud_name);
@@ -844,6 +941,24 @@ static ump_status check_prgh_walls(const app *a, const char *tname, ump_err *err
     return UMP_OK;
 }
 
+/* A restart with adjustTimeStep goes on with the deltaT of the start time's
+ * uniform/time, as OpenFOAM's Time (it had started from controlDict's
+ * deltaT, growing by 1.2 per step, until 2026-12-06: U 1.6 % from the
+ * uninterrupted run on the cavity). */
+static ump_status restore_delta_t(const app *a, rt_time *t, const char *tname, ump_err *err)
+{
+    double dt;
+    int has;
+    if (!a->ctl.adjust_time_step)
+        return UMP_OK;
+    UMP_CALL(case_read_time_delta_t(a->case_dir, tname, &dt, &has, err));
+    if (has) {
+        rt_restore_delta_t(t, dt);
+        printf("deltaT = %g from %s/uniform/time (adjustTimeStep)\n", t->delta_t, tname);
+    }
+    return UMP_OK;
+}
+
 /* The buoyant part of the set-up: g, Boussinesq constants, T, p_rgh, p,
  * alphat (see the top of the file). */
 static ump_status read_buoyant(app *a, const char *tname, ump_err *err)
@@ -1182,60 +1297,6 @@ ump_status app_recover(const char *case_dir, ump_err *err)
     return fio_recover(case_dir, recover_report, NULL, err);
 }
 
-/* runTimeModifiable (README "Running"): the words of the enumerations, for
- * the log. */
-static const char *const stop_at_word[] = {"endTime", "writeNow", "noWriteNow", "nextWrite"};
-static const char *const write_control_word[] = {"timeStep", "runTime", "adjustableRunTime", "cpuTime",
-                                                 "clockTime"};
-static const char *const time_format_word[] = {"general", "fixed", "scientific"};
-static const char *const on_off[] = {"off", "on"};
-
-/* Append ", key old -> new" to buf. */
-static void note_change(char *buf, size_t len, const char *key, const char *was, const char *now)
-{
-    size_t n = strlen(buf);
-    snprintf(buf + n, len - n, "%s%s %s -> %s", n ? ", " : "", key, was, now);
-}
-
-static void note_number(char *buf, size_t len, const char *key, double was, double now)
-{
-    char w[32], v[32];
-    snprintf(w, sizeof w, "%.15g", was);
-    snprintf(v, sizeof v, "%.15g", now);
-    if (was != now)
-        note_change(buf, len, key, w, v);
-}
-
-static void note_word(char *buf, size_t len, const char *key, const char *was, const char *now)
-{
-    if (strcmp(was, now) != 0)
-        note_change(buf, len, key, was, now);
-}
-
-/* The settings of o that c changes, "endTime 0.5 -> 0.3, deltaT ...". */
-static void control_changes(const case_control *o, const case_control *c, int delta_t_fixed, char *buf,
-                            size_t len)
-{
-    buf[0] = '\0';
-    note_word(buf, len, "stopAt", stop_at_word[o->stop_at], stop_at_word[c->stop_at]);
-    if (c->stop_at == CASE_STOP_ENDTIME)
-        note_number(buf, len, "endTime", o->stop_at == CASE_STOP_ENDTIME ? o->end_time : 1e15, c->end_time);
-    note_number(buf, len, delta_t_fixed ? "deltaT (not used: adjustTimeStep has set the step)" : "deltaT",
-                o->delta_t, c->delta_t);
-    note_word(buf, len, "writeControl", write_control_word[o->write_control], write_control_word[c->write_control]);
-    note_number(buf, len, "writeInterval", o->write_interval, c->write_interval);
-    note_number(buf, len, "purgeWrite", o->purge_write, c->purge_write);
-    note_word(buf, len, "writeFormat", o->write_binary ? "binary" : "ascii", c->write_binary ? "binary" : "ascii");
-    note_number(buf, len, "writePrecision", o->write_precision, c->write_precision);
-    note_word(buf, len, "writeCompression", on_off[o->write_compression], on_off[c->write_compression]);
-    note_word(buf, len, "timeFormat", time_format_word[o->time_format_fixed], time_format_word[c->time_format_fixed]);
-    note_number(buf, len, "timePrecision", o->time_precision, c->time_precision);
-    note_word(buf, len, "adjustTimeStep", on_off[o->adjust_time_step], on_off[c->adjust_time_step]);
-    note_number(buf, len, "maxCo", o->max_co, c->max_co);
-    note_number(buf, len, "maxDeltaT", o->max_delta_t, c->max_delta_t);
-    note_word(buf, len, "runTimeModifiable", o->run_time_modifiable ? "true" : "false",
-              c->run_time_modifiable ? "true" : "false");
-}
 
 /* runTimeModifiable, at the start of each time step (Time::run calls
  * readModifiedObjects): when system/controlDict is another version than
@@ -1281,7 +1342,7 @@ static ump_status reread_control(app *a, rt_time *t, double t0, const char *tnam
         return UMP_OK;
     }
     char what[2048];
-    control_changes(&a->ctl, &c, t->delta_t_changed, what, sizeof what);
+    case_control_changes(&a->ctl, &c, t->delta_t_changed, what, sizeof what);
     printf("controlDict: %s\n", what[0] ? what : "no setting changed");
     rt_reread(t, &c);
     a->ctl = c;
@@ -1411,7 +1472,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
 
     rt_time t;
     rt_init(&t, &a.ctl, t0, tname);
-    if ((rc = check_planned_writes(&a, &t, err)) != UMP_OK)
+    if ((rc = restore_delta_t(&a, &t, tname, err)) != UMP_OK || (rc = check_planned_writes(&a, &t, err)) != UMP_OK)
         goto done;
     a.u_scale = speed_scale(&a);
     a.u_bound = a.um.max_velocity > 0 ? a.um.max_velocity : 100 * a.u_scale;
@@ -1525,7 +1586,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
             printf("sigStopAtWriteNow : %s received: time %s written, stopping (stopAt writeNow)\n\n",
                    stopsig_name(sig), t.name);
         else if (!rt_running(&t) && t.ctl.stop_at != CASE_STOP_ENDTIME)
-            printf("stopAt %s: time %s %s, stopping\n\n", stop_at_word[t.ctl.stop_at], t.name,
+            printf("stopAt %s: time %s %s, stopping\n\n", case_stop_at_name(t.ctl.stop_at), t.name,
                    t.write_time ? "written" : "not written");
         errno = 0;
         if (fflush(stdout) != 0 || ferror(stdout)) {

@@ -160,10 +160,15 @@ ump_status case_read_control(const char *case_dir, case_control *c, ump_err *err
         (rc = foam_get_scalar_or(d, "maxDeltaT", DBL_MAX, &c->max_delta_t, err)) != UMP_OK ||
         (rc = foam_get_bool_or(d, "runTimeModifiable", 1, &c->run_time_modifiable, err)) != UMP_OK)
         goto done;
-    if (purge < 0 || wprec < 1 || wprec > 30 || tprec < 1 || tprec > 30 || !(c->max_co > 0)) {
-        rc = UMP_FAIL(err, UMP_ERR_INPUT,
-                      "%s: purgeWrite must be >= 0, writePrecision and timePrecision in 1..30, maxCo > 0",
-                      f->path);
+    /* each bad value named with its file and line */
+    const char *badkey = purge < 0 ? "purgeWrite" : wprec < 1 || wprec > 30 ? "writePrecision"
+                       : tprec < 1 || tprec > 30 ? "timePrecision" : !(c->max_co > 0) ? "maxCo" : NULL;
+    if (badkey) {
+        const foam_entry *e = foam_dict_find(d, badkey, 0);
+        double v = purge < 0 ? (double)purge : wprec < 1 || wprec > 30 ? (double)wprec
+                 : tprec < 1 || tprec > 30 ? (double)tprec : c->max_co;
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s %g: must be %s", f->path, e ? e->line : 0, badkey, v,
+                      purge < 0 ? ">= 0 (0: keep every time)" : !(c->max_co > 0) ? "positive" : "in 1..30");
         goto done;
     }
     /* OpenFOAM clamps writePrecision silently to what a double can carry */
@@ -1147,6 +1152,85 @@ ump_status case_read_phases(const char *case_dir, case_phases *ph, ump_err *err)
     }
     foam_file_free(&f);
     return rc;
+}
+
+ump_status case_read_time_delta_t(const char *case_dir, const char *tname, double *delta_t, int *has,
+                                  ump_err *err)
+{
+    char path[4400];
+    snprintf(path, sizeof path, "%s/%s/uniform/time", case_dir, tname);
+    *has = 0;
+    if (!foam_file_exists(path))
+        return UMP_OK;
+    foam_file *f = NULL;
+    UMP_CALL(foam_file_read(path, &f, err));
+    ump_status rc = UMP_OK;
+    if (foam_dict_find(f->dict, "deltaT", 0)) {
+        rc = foam_get_scalar(f->dict, "deltaT", delta_t, err);
+        *has = rc == UMP_OK;
+    }
+    foam_file_free(&f);
+    return rc;
+}
+
+/* runTimeModifiable (README "Running"): the words of the enumerations, for
+ * the log. */
+static const char *const stop_at_word[] = {"endTime", "writeNow", "noWriteNow", "nextWrite"};
+static const char *const write_control_word[] = {"timeStep", "runTime", "adjustableRunTime", "cpuTime",
+                                                 "clockTime"};
+static const char *const time_format_word[] = {"general", "fixed", "scientific"};
+static const char *const on_off[] = {"off", "on"};
+
+/* Append ", key old -> new" to buf. */
+static void note_change(char *buf, size_t len, const char *key, const char *was, const char *now)
+{
+    size_t n = strlen(buf);
+    snprintf(buf + n, len - n, "%s%s %s -> %s", n ? ", " : "", key, was, now);
+}
+
+static void note_number(char *buf, size_t len, const char *key, double was, double now)
+{
+    char w[32], v[32];
+    snprintf(w, sizeof w, "%.15g", was);
+    snprintf(v, sizeof v, "%.15g", now);
+    if (was != now)
+        note_change(buf, len, key, w, v);
+}
+
+static void note_word(char *buf, size_t len, const char *key, const char *was, const char *now)
+{
+    if (strcmp(was, now) != 0)
+        note_change(buf, len, key, was, now);
+}
+
+/* The settings of o that c changes, "endTime 0.5 -> 0.3, deltaT ...". */
+void case_control_changes(const case_control *o, const case_control *c, int delta_t_fixed, char *buf,
+                          size_t len)
+{
+    buf[0] = '\0';
+    note_word(buf, len, "stopAt", stop_at_word[o->stop_at], stop_at_word[c->stop_at]);
+    if (c->stop_at == CASE_STOP_ENDTIME)
+        note_number(buf, len, "endTime", o->stop_at == CASE_STOP_ENDTIME ? o->end_time : 1e15, c->end_time);
+    note_number(buf, len, delta_t_fixed ? "deltaT (not used: adjustTimeStep has set the step)" : "deltaT",
+                o->delta_t, c->delta_t);
+    note_word(buf, len, "writeControl", write_control_word[o->write_control], write_control_word[c->write_control]);
+    note_number(buf, len, "writeInterval", o->write_interval, c->write_interval);
+    note_number(buf, len, "purgeWrite", o->purge_write, c->purge_write);
+    note_word(buf, len, "writeFormat", o->write_binary ? "binary" : "ascii", c->write_binary ? "binary" : "ascii");
+    note_number(buf, len, "writePrecision", o->write_precision, c->write_precision);
+    note_word(buf, len, "writeCompression", on_off[o->write_compression], on_off[c->write_compression]);
+    note_word(buf, len, "timeFormat", time_format_word[o->time_format_fixed], time_format_word[c->time_format_fixed]);
+    note_number(buf, len, "timePrecision", o->time_precision, c->time_precision);
+    note_word(buf, len, "adjustTimeStep", on_off[o->adjust_time_step], on_off[c->adjust_time_step]);
+    note_number(buf, len, "maxCo", o->max_co, c->max_co);
+    note_number(buf, len, "maxDeltaT", o->max_delta_t, c->max_delta_t);
+    note_word(buf, len, "runTimeModifiable", o->run_time_modifiable ? "true" : "false",
+              c->run_time_modifiable ? "true" : "false");
+}
+
+const char *case_stop_at_name(int stop_at)
+{
+    return stop_at >= 0 && stop_at < 4 ? stop_at_word[stop_at] : "?";
 }
 
 int case_name_is_safe(const char *name)

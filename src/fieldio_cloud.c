@@ -219,8 +219,17 @@ ump_status fio_read_cloud(const char *dir, const char *cloud, size_t *n, double 
     *cell = NULL;
     *n = 0;
     snprintf(path, sizeof path, "%s/lagrangian/%s/positions", dir, cloud);
-    UMP_CALL(foam_file_read(path, &f, err));
-    ump_status rc = parse_positions(f, n, pos, cell, err);
+    ump_status rc = foam_file_read(path, &f, err);
+    if (rc == UMP_ERR_UNSUPPORTED && strstr(err->msg, "binary files of class")) {
+        /* foamFormatConvert with writeFormat binary writes the cloud so */
+        const char *tn = strrchr(dir, '/') ? strrchr(dir, '/') + 1 : dir;
+        return UMP_FAIL(err, UMP_ERR_UNSUPPORTED, "%s: a binary cloud (as foamFormatConvert writes it with "
+                        "writeFormat binary) is not read by %s: set writeFormat ascii in system/controlDict and "
+                        "run 'foamFormatConvert -time %s' to convert it back, or run with -reseed to seed new "
+                        "particles from the fields", path, ump_solver, tn);
+    }
+    UMP_CALL(rc);
+    rc = parse_positions(f, n, pos, cell, err);
     foam_file_free(&f);
     if (rc != UMP_OK)
         return rc;

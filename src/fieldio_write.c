@@ -403,6 +403,81 @@ ump_status fio_timedir_begin(const char *case_dir, const char *name,
     return UMP_OK;
 }
 
+/* A copy of regular file src as dst (where a hard link cannot be made). */
+static int copy_file(const char *src, const char *dst, mode_t mode)
+{
+    int in = open(src, O_RDONLY), out = in < 0 ? -1 : open(dst, O_WRONLY | O_CREAT | O_EXCL, mode & 0777);
+    int rc = in < 0 || out < 0 ? -1 : 0;
+    char buf[65536];
+    for (ssize_t r; rc == 0 && (r = read(in, buf, sizeof buf)) != 0;) {
+        if (r < 0 || write(out, buf, (size_t)r) != r)
+            rc = -1;
+    }
+    if (in >= 0)
+        close(in);
+    if (out >= 0 && close(out) != 0)
+        rc = -1;
+    return rc;
+}
+
+/* Give the new version of a time directory (dst) what the version it
+ * replaces (src) holds and the new one does not: files other tools wrote
+ * there (postProcess's vorticity, a user's notes) survive the overwrite,
+ * as OpenFOAM's solvers write into an existing time directory. Files are
+ * hard-linked (copied where a link cannot be made), so src stays whole
+ * until the swap. A directory in both is entered only where it is
+ * uniform/ or lagrangian/ at the top (level 0), and a cloud directory
+ * under lagrangian/ that the new version has is the new version's alone
+ * (an old cloud field beside new positions would not match their count);
+ * any other directory in both, and any file in both, is the new one's.
+ * Returns 0, or -1 with errno. */
+static int keep_others(const char *src, const char *dst, int level)
+{
+    DIR *d = opendir(src);
+    if (!d)
+        return -1;
+    int rc = 0;
+    for (struct dirent *e; rc == 0 && (e = readdir(d)) != NULL;) {
+        if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
+            continue;
+        char s[4400], t[4400];
+        if ((size_t)snprintf(s, sizeof s, "%s/%s", src, e->d_name) >= sizeof s ||
+            (size_t)snprintf(t, sizeof t, "%s/%s", dst, e->d_name) >= sizeof t) {
+            errno = ENAMETOOLONG;
+            rc = -1;
+            break;
+        }
+        struct stat ss, ts;
+        if (lstat(s, &ss) != 0) {
+            rc = -1;
+            break;
+        }
+        if (lstat(t, &ts) == 0) {
+            if (S_ISDIR(ss.st_mode) && S_ISDIR(ts.st_mode) && level == 0 &&
+                (strcmp(e->d_name, "uniform") == 0 || strcmp(e->d_name, "lagrangian") == 0))
+                rc = keep_others(s, t, strcmp(e->d_name, "uniform") == 0 ? 2 : 1);
+            else if (S_ISDIR(ss.st_mode) && S_ISDIR(ts.st_mode) && level == 2)
+                rc = keep_others(s, t, 2); /* uniform/functionObjects/... */
+            continue;
+        }
+        if (errno != ENOENT) {
+            rc = -1;
+        } else if (S_ISDIR(ss.st_mode)) {
+            rc = mkdir(t, ss.st_mode & 0777) != 0 ? -1 : keep_others(s, t, 3);
+        } else if (S_ISLNK(ss.st_mode)) {
+            char l[4400];
+            ssize_t n = readlink(s, l, sizeof l - 1);
+            rc = n < 0 ? -1 : (l[n] = '\0', symlink(l, t));
+        } else if (link(s, t) != 0) {
+            rc = S_ISREG(ss.st_mode) ? copy_file(s, t, ss.st_mode) : 0; /* (sockets, fifos: not kept) */
+        }
+    }
+    int keep = errno;
+    closedir(d);
+    errno = keep;
+    return rc;
+}
+
 ump_status fio_timedir_commit(fio_timedir *td, ump_err *err)
 {
     UMP_CHECK(td && td->open, err, UMP_ERR_INPUT, "fio_timedir_commit: no open time directory");
@@ -417,6 +492,10 @@ ump_status fio_timedir_commit(fio_timedir *td, ump_err *err)
         return UMP_OK;
     }
 
+    /* files of the old version that this one does not write are kept */
+    if (keep_others(td->final_dir, td->tmp_dir, 0) != 0)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot carry its other files into the new version (%s): the "
+                        "previous version is left as it was", td->final_dir, strerror(errno));
     /* Overwrite. First choice: swap the new directory and the old one in one
      * atomic step, then delete the old one, now under the hidden temporary
      * name. A kill at any instant leaves <name> complete (old or new) and at
@@ -748,6 +827,37 @@ ump_status fio_write_text(const char *dir, const char *name, const char *text, s
     int bad = fwrite(text, 1, len, fp) != len;
     bad |= fclose(fp) != 0;
     UMP_CHECK(!bad, err, UMP_ERR_IO, "%s: write failed", path);
+    return UMP_OK;
+}
+
+ump_status fio_write_uniform_dict(const char *dir, const char *location, const char *object, const char *body,
+                                  ump_err *err)
+{
+    char udir[4200], path[4400], loc[4200];
+    int n1 = snprintf(udir, sizeof udir, "%s/uniform", dir);
+    int n2 = snprintf(path, sizeof path, "%s/uniform/%s", dir, object);
+    int n3 = snprintf(loc, sizeof loc, "%s/uniform", location ? location : "");
+    UMP_CHECK(n1 > 0 && n2 > 0 && n3 > 0 && (size_t)n1 < sizeof udir && (size_t)n2 < sizeof path &&
+                  (size_t)n3 < sizeof loc,
+              err, UMP_ERR_INPUT, "%s: path too long", dir);
+    UMP_CALL(fio_mkdir_p(udir, err));
+    sink *s = malloc(sizeof *s);
+    if (!s)
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
+    if (sink_open(s, path, 0) != 0) {
+        int e = errno;
+        free(s);
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot open for writing: %s", path, strerror(e));
+    }
+    put_header(s, "dictionary", location ? loc : NULL, object, 0);
+    sink_puts(s, body);
+    put_footer(s);
+    errno = 0;
+    int bad = sink_close(s);
+    int e = errno;
+    free(s);
+    if (bad)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: write failed%s%s", path, e ? ": " : "", e ? strerror(e) : "");
     return UMP_OK;
 }
 

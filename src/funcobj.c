@@ -18,6 +18,18 @@ static void note_ignored(fob_list *L, const char *name, const char *type)
     snprintf(L->ignored + len, sizeof L->ignored - len, "%s%s (%s)", len ? ", " : "", name, type);
 }
 
+/* A primitive entry of functions: `#includeFunc mag(U)` is named by its
+ * function ("mag(U) (#includeFunc)"). */
+static void note_primitive(fob_list *L, const foam_entry *e)
+{
+    if (strcmp(e->key, "#includeFunc") == 0 && e->ntok > 0 && e->tok[0].type == FOAM_TOK_WORD)
+        note_ignored(L, e->tok[0].v.str, "#includeFunc");
+    else if (strcmp(e->key, "#includeFunc") == 0 && e->ntok > 0 && e->tok[0].type == FOAM_TOK_STRING)
+        note_ignored(L, e->tok[0].v.str, "#includeFunc");
+    else
+        note_ignored(L, e->key, "not a dictionary");
+}
+
 /* name, patch (key `patch` or, for surfaceFieldValue, `name`),
  * writeControl, writeInterval. */
 static ump_status read_common(const foam_dict *d, const char *name, const char *patch_key, fob_common *c,
@@ -156,7 +168,7 @@ ump_status fob_read(const char *case_dir, fob_list *L, ump_err *err)
     for (size_t i = 0; fd && i < fd->n; i++) {
         const foam_entry *e = &fd->e[i];
         if (!e->dict) { /* #includeFunc and other primitive entries */
-            note_ignored(L, e->key, "not a dictionary");
+            note_primitive(L, e);
             continue;
         }
         if (!case_name_is_safe(e->key)) { /* postProcessing/<name>/... */
@@ -217,7 +229,7 @@ ump_status fob_names(const char *case_dir, char *buf, size_t size, ump_err *err)
         const char *type = NULL;
         int enabled = 1;
         if (!e->dict)
-            note_ignored(&L, e->key, "not a dictionary");
+            note_primitive(&L, e);
         else if ((rc = foam_get_word(e->dict, "type", &type, err)) == UMP_OK &&
                  (rc = foam_get_bool_or(e->dict, "enabled", 1, &enabled, err)) == UMP_OK && enabled)
             note_ignored(&L, e->key, type);

@@ -330,6 +330,10 @@ static int run(int argc, char **argv)
         } else if (strcmp(a, "-version") == 0) {
             printf("umppmFoam %s (reads OpenFOAM v1912 cases)\n", UMPPM_VERSION);
             return 0;
+        } else if (strcmp(a, "-parallel") == 0) {
+            fprintf(stderr, "--> umppmFoam FATAL ERROR: option -parallel is not implemented: umppmFoam runs "
+                    "one process on the undecomposed case, with threads (set OMP_NUM_THREADS)\n");
+            return 1;
         } else {
             fprintf(stderr, "--> umppmFoam FATAL ERROR: unknown option '%s'\n", argv[i]);
             usage(stderr);

@@ -3,7 +3,7 @@
  * line, banner and log; the only place of this application that prints
  * errors and exits.
  *
- *   meshlessFoam [-case DIR] [-help] [-version]
+ *   meshlessFoam [-case DIR] [-reseed] [-noFunctionObjects] [-help] [-version]
  *
  * -help also lists the keys of the meshless dictionary of system/fvSolution
  * (case_meshless_help: the reader's own table).
@@ -27,6 +27,9 @@ static void usage(FILE *fp)
             "\nUsage: meshlessFoam [OPTIONS]\n"
             "options:\n"
             "  -case <dir>       Specify case directory to use (instead of the cwd)\n"
+            "  -reseed           A restart time without its particle cloud: seed new particles\n"
+            "                    from its alpha and U (else an error)\n"
+            "  -noFunctionObjects  Do not execute function objects (meshlessFoam runs none)\n"
             "  -version          Print the version and exit\n"
             "  -help             Print this usage and the meshless options, then exit\n"
             "\nFree-surface flow on particles alone (method MPS: fully implicit MPS;\n"
@@ -76,6 +79,7 @@ static void banner(int argc, char **argv, const char *case_dir)
 static int run(int argc, char **argv)
 {
     const char *case_dir = ".";
+    mlapp_options opt = {0, 0};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (a[0] == '-' && a[1] == '-')
@@ -87,12 +91,20 @@ static int run(int argc, char **argv)
                 return 1;
             }
             case_dir = argv[++i];
+        } else if (strcmp(a, "-reseed") == 0) {
+            opt.reseed = 1;
+        } else if (strcmp(a, "-noFunctionObjects") == 0) {
+            opt.no_function_objects = 1;
         } else if (strcmp(a, "-help") == 0 || strcmp(a, "-h") == 0) {
             help(stdout);
             return 0;
         } else if (strcmp(a, "-version") == 0) {
             printf("meshlessFoam %s (reads OpenFOAM v1912 cases)\n", MESHLESS_VERSION);
             return 0;
+        } else if (strcmp(a, "-parallel") == 0) {
+            fprintf(stderr, "--> meshlessFoam FATAL ERROR: option -parallel is not implemented: meshlessFoam "
+                    "runs one process on the undecomposed case, with threads (set OMP_NUM_THREADS)\n");
+            return 1;
         } else {
             fprintf(stderr, "--> meshlessFoam FATAL ERROR: unknown option '%s'\n", argv[i]);
             usage(stderr);
@@ -101,7 +113,7 @@ static int run(int argc, char **argv)
     }
     banner(argc, argv, case_dir);
     ump_err err;
-    if (mlapp_run(case_dir, &err) != UMP_OK) {
+    if (mlapp_run(case_dir, &opt, &err) != UMP_OK) {
         fflush(stdout);
         fprintf(stderr, "--> meshlessFoam FATAL ERROR: %s\n", err.msg);
         return 1;

@@ -67,11 +67,18 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/time.h>
 #include <time.h>
 
 typedef struct mlapp {
     const char *case_dir;
+    mlapp_options opt;
+    /* runTimeModifiable: system/controlDict is watched while ctl_watch */
+    int ctl_watch;
+    int ctl_missing;         /* the last stat failed (warned once) */
+    case_stamp ctl_stamp;    /* the version read last */
+    char ctl_path[4200];     /* <case>/system/controlDict */
     case_control ctl;
     case_phases ph;
     case_buoyancy bu;
@@ -384,10 +391,12 @@ static ump_status read_case(mlapp *a, const char *tname, ump_err *err)
     snprintf(name, sizeof name, "alpha.%s", a->ph.name[0]);
     UMP_CALL(read_field(a, tname, name, 1, &a->alpha, err));
     UMP_CALL(read_field(a, tname, "U", 3, &a->U, err));
+    /* interFoam's MULES leaves alpha outside [0, 1] by round-off (1e-6 in
+     * its written times, refused until 2026-12-06): up to 1e-3 is accepted */
     for (ump_idx c = 0; c < m->ncells; c++)
-        if (!(a->alpha->internal[c] >= -1e-6 && a->alpha->internal[c] <= 1 + 1e-6))
-            return UMP_FAIL(err, UMP_ERR_INPUT, "%s/%s/%s: cell %ld has the volume fraction %g, outside [0, 1]",
-                            a->case_dir, tname, name, (long)c, a->alpha->internal[c]);
+        if (!(a->alpha->internal[c] >= -1e-3 && a->alpha->internal[c] <= 1 + 1e-3))
+            return UMP_FAIL(err, UMP_ERR_INPUT, "%s/%s/%s: cell %ld has the volume fraction %.17g, outside [0, 1] "
+                            "by more than 1e-3", a->case_dir, tname, name, (long)c, a->alpha->internal[c]);
     UMP_CALL(check_boundary(a, err));
     if (a->mo.deform) {
         UMP_CHECK(a->pm->npatches <= 64, err, UMP_ERR_UNSUPPORTED,
@@ -420,6 +429,88 @@ static ump_status read_case(mlapp *a, const char *tname, ump_err *err)
         if (a->pm->patch[p].kind == PMESH_EMPTY)
             a->p->patch[p].type = FLD_BC_EMPTY;
     return UMP_OK;
+}
+
+/* runTimeModifiable, before each step, as umppmFoam's (app.c): a new
+ * version of system/controlDict is re-read with the start-up checks and
+ * applied to the time (rt_reread) and the write settings; a version that
+ * fails them is a warning and the run goes on with the settings it has.
+ * (Until 2026-12-06 meshlessFoam did not watch controlDict: stopAt
+ * writeNow or a new endTime went unheeded, without a word.) The meshless
+ * maxCo (the particle Courant number) stays the step's bound. */
+static void reread_control(mlapp *a, rt_time *t, double t0, const char *tname)
+{
+    case_stamp now;
+    if (case_file_stamp(a->ctl_path, &now) != 0) {
+        if (!a->ctl_missing)
+            printf("--> meshlessFoam Warning: %s: cannot read (%s); the run continues with the settings it has\n",
+                   a->ctl_path, strerror(errno));
+        a->ctl_missing = 1;
+        return;
+    }
+    a->ctl_missing = 0;
+    if (case_stamp_equal(&now, &a->ctl_stamp))
+        return;
+    a->ctl_stamp = now;
+    printf("regIOobject::readIfModified() : Re-reading object controlDict from file \"%s\"\n", a->ctl_path);
+    case_control c;
+    ump_err e;
+    memset(&e, 0, sizeof e);
+    if (case_read_control(a->case_dir, &c, &e) != UMP_OK || case_check_start(a->case_dir, &c, tname, t0, &e) != UMP_OK) {
+        printf("--> meshlessFoam Warning: %s; the re-read controlDict is not used: the run continues with the "
+               "settings it has\n\n", e.msg);
+        return;
+    }
+    char what[2048];
+    case_control_changes(&a->ctl, &c, t->delta_t_changed, what, sizeof what);
+    printf("controlDict: %s\n", what[0] ? what : "no setting changed");
+    rt_reread(t, &c);
+    t->ctl.max_co = a->ml.max_co;
+    a->ctl = c;
+    if (!c.run_time_modifiable) {
+        a->ctl_watch = 0;
+        printf("runTimeModifiable false: system/controlDict is no longer watched\n");
+    }
+    if (!rt_running(t))
+        printf("endTime %g is not after the current time %s: the run ends\n", t->ctl.end_time, t->name);
+    printf("\n");
+}
+
+/* Is the start time a restart from its cloud (*restart = 1), or are the
+ * particles seeded from alpha? As umppmFoam's: a time some solver wrote
+ * (uniform/time) or one with the cloud's directory is a restart, whose
+ * particles are part of the state, so a missing cloud is an error unless
+ * -reseed (it had been seeded from alpha without a word until 2026-12-06:
+ * 4.7 % more liquid in the helper's dam break). */
+static ump_status restart_policy(const mlapp *a, const char *tname, int *restart, ump_err *err)
+{
+    char dir[4400], cl[4600], path[4700], co[4700], ut[4600];
+    snprintf(dir, sizeof dir, "%s/%s", a->case_dir, tname);
+    snprintf(cl, sizeof cl, "%s/lagrangian/%s", dir, a->ml.cloud_name);
+    snprintf(path, sizeof path, "%s/positions", cl);
+    snprintf(co, sizeof co, "%s/coordinates", cl);
+    snprintf(ut, sizeof ut, "%s/uniform/time", dir);
+    struct stat st;
+    int has = foam_file_exists(path);
+    *restart = has && !a->opt.reseed;
+    if (a->opt.reseed) {
+        printf("Restart: -reseed: particles seeded from the fields of time %s%s\n\n", tname,
+               has ? " (its cloud is not read)" : "");
+        return UMP_OK;
+    }
+    if (has)
+        return UMP_OK;
+    if (foam_file_exists(co))
+        return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                        "%s: not found: the cloud '%s' of time %s has only 'coordinates', OpenFOAM's barycentric "
+                        "format (as mapFields and decomposePar write it), which meshlessFoam does not read; run "
+                        "with -reseed to seed new particles from alpha.%s of time %s", path, a->ml.cloud_name,
+                        tname, a->ph.name[0], tname);
+    if (stat(ut, &st) == 0 || stat(cl, &st) == 0)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: not found: the restart from time %s has no particle cloud '%s' "
+                        "(cloudName); run with -reseed to seed new particles from alpha.%s", path, tname,
+                        a->ml.cloud_name, a->ph.name[0]);
+    return UMP_OK; /* a first start (e.g. 0/): the particles are seeded */
 }
 
 /* Seeding fills the cells with alpha >= 1/2 (mlseed.h): where alpha is
@@ -475,9 +566,9 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
      * wall faces (the boundary particles), then ghosts behind the walls as
      * deep as the free-surface test reaches (docs/METHOD.md section 11). */
     double wall_depth = P->re_n * l0, thick = fmax(2 * P->re_n, P->re_lap + 0.5) * l0;
-    char cdir0[4600];
-    snprintf(cdir0, sizeof cdir0, "%s/%s/lagrangian/%s/positions", a->case_dir, tname, a->ml.cloud_name);
-    if (!foam_file_exists(cdir0))
+    int restart;
+    UMP_CALL(restart_policy(a, tname, &restart, err));
+    if (!restart)
         UMP_CALL(check_alpha_volume(a, tname, err));
     if (is_fpm)
         wall_depth = thick = (a->ml.re_s + 1) * l0;
@@ -554,10 +645,8 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
         free(sface);
     }
     /* a restart: the fluid particles of the start time's cloud */
-    char dir[4400], cdir[4600];
+    char dir[4400];
     snprintf(dir, sizeof dir, "%s/%s", a->case_dir, tname);
-    snprintf(cdir, sizeof cdir, "%s/lagrangian/%s/positions", dir, a->ml.cloud_name);
-    int restart = foam_file_exists(cdir);
     if (restart) {
         size_t n;
         double *pos = NULL, *vel = NULL;
@@ -796,9 +885,14 @@ static ump_status write_time(mlapp *a, const rt_time *t, ump_err *err)
     fld_field *F[4] = {a->alpha, a->U, a->prgh, a->p};
     for (int q = 0; q < 4 && rc == UMP_OK; q++)
         rc = fio_write_field(td.tmp_dir, t->name, a->pm, F[q], &fmt, err);
+    /* the cloud is the run's state: its positions and velocities are
+     * written to 17 digits whatever writePrecision says (at interFoam's 6,
+     * a restart had drifted from the run it continues: p_rgh 11 % apart at
+     * 0.05 s later on the dam break, as the particle spacing's round-off
+     * enters the number density) */
     if (rc == UMP_OK)
-        rc = fio_write_cloud(td.tmp_dir, t->name, a->ml.cloud_name, nf, pos, vel, s->cell + ns, s->id + ns,
-                             a->ctl.write_precision, err);
+        rc = fio_write_cloud(td.tmp_dir, t->name, a->ml.cloud_name, nf, pos, vel, s->cell + ns, s->id + ns, 17,
+                             err);
     if (rc == UMP_OK)
         rc = fio_write_cloud_field(td.tmp_dir, t->name, a->ml.cloud_name, "p", 1, nf, ml_pressure(a) + ns,
                                    a->ctl.write_precision, err);
@@ -1098,16 +1192,21 @@ static double wave_speed(const mlapp *a)
     return hi > lo ? sqrt(g * (hi - lo + a->prm.l0)) : 0;
 }
 
-ump_status mlapp_run(const char *case_dir, ump_err *err)
+ump_status mlapp_run(const char *case_dir, const mlapp_options *opt, ump_err *err)
 {
     mlapp a;
     memset(&a, 0, sizeof a);
     a.case_dir = case_dir;
+    a.opt = *opt;
     ump_status rc;
     char tname[256], pmdir[4096];
     double t0, wall0 = wall_seconds();
     clock_t cpu0 = clock();
     printf("Create time\n\n");
+    /* the version of controlDict read here is the one runTimeModifiable
+     * compares with */
+    snprintf(a.ctl_path, sizeof a.ctl_path, "%s/system/controlDict", case_dir);
+    (void)case_file_stamp(a.ctl_path, &a.ctl_stamp);
     if ((rc = app_recover(case_dir, err)) != UMP_OK || (rc = case_read_control(case_dir, &a.ctl, err)) != UMP_OK ||
         (rc = case_start_dir(case_dir, &a.ctl, tname, sizeof tname, &t0, err)) != UMP_OK ||
         (rc = case_check_start(case_dir, &a.ctl, tname, t0, err)) != UMP_OK ||
@@ -1130,7 +1229,7 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
     char fos[512];
     if ((rc = fob_names(case_dir, fos, sizeof fos, err)) != UMP_OK)
         goto done;
-    if (fos[0])
+    if (fos[0] && !a.opt.no_function_objects)
         printf("--> meshlessFoam Warning: function objects are not run by meshlessFoam (ignored): %s\n", fos);
     printf("Gravity: (%g %g) in the plane (%c %c)\n\n", a.g2[0], a.g2[1], "xyz"[a.m->ax[0]], "xyz"[a.m->ax[1]]);
     if (a.nmoving)
@@ -1192,6 +1291,19 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
     rt_time t;
     rt_init(&t, &a.ctl, t0, tname);
     t.ctl.max_co = a.ml.max_co; /* adjustTimeStep keeps the particle Courant number */
+    if (a.ctl.adjust_time_step) {
+        /* a restart goes on with the deltaT of its uniform/time, as
+         * OpenFOAM's Time (it had started from controlDict's until
+         * 2026-12-06) */
+        double dt;
+        int has;
+        if ((rc = case_read_time_delta_t(case_dir, tname, &dt, &has, err)) != UMP_OK)
+            goto done;
+        if (has) {
+            rt_restore_delta_t(&t, dt);
+            printf("deltaT = %g from %s/uniform/time (adjustTimeStep)\n", t.delta_t, tname);
+        }
+    }
     if (stopsig_install() != 0)
         printf("--> meshlessFoam Warning: cannot install the SIGINT/SIGTERM handler: %s\n", strerror(errno));
     /* The step's Courant number uses the speed max(|U|max, sqrt(|g| H)),
@@ -1230,7 +1342,14 @@ ump_status mlapp_run(const char *case_dir, ump_err *err)
                                              "particle management"};
     const int nstage = a.fpm ? 6 : 5;
     const char *const *stage_name = a.fpm ? fpm_stage : mps_stage;
+    a.ctl_watch = a.ctl.run_time_modifiable;
     while (rt_running(&t)) {
+        /* runTimeModifiable: Time::run re-reads controlDict before each step */
+        if (a.ctl_watch) {
+            reread_control(&a, &t, t0, tname);
+            if (!rt_running(&t))
+                break;
+        }
         /* umax, umean: of the start fields, then of the step before */
         u_g = wave_speed(&a);
         printf("Courant Number mean: %g max: %g\n", umean * t.delta_t / l0, umax * t.delta_t / l0);

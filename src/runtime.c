@@ -230,9 +230,18 @@ void rt_adjust_delta_t(rt_time *t, double courant_max)
     adjust_to_write(t);
 }
 
+void rt_restore_delta_t(rt_time *t, double delta_t)
+{
+    if (!t->ctl.adjust_time_step || !(delta_t > 0) || !isfinite(delta_t))
+        return;
+    t->delta_t = t->delta_t0 = t->delta_t_save = delta_t;
+    t->delta_t_changed = 1;
+    t->restored = 1;
+}
+
 void rt_set_initial_delta_t(rt_time *t, double courant_max)
 {
-    if (!t->ctl.adjust_time_step || t->index != 0 || !(courant_max > RT_SMALL))
+    if (!t->ctl.adjust_time_step || t->index != 0 || t->restored || !(courant_max > RT_SMALL))
         return;
     t->delta_t = fmin(t->ctl.max_co * t->delta_t / courant_max,
                       fmin(t->delta_t, max_delta_t(&t->ctl)));

@@ -289,6 +289,19 @@ typedef struct case_phases {
 } case_phases;
 ump_status case_read_phases(const char *case_dir, case_phases *ph, ump_err *err);
 
+/* runTimeModifiable's log: ", key old -> new" for every setting of c that
+ * differs from o ("" if none); delta_t_fixed: adjustTimeStep has set the
+ * step, so a new deltaT is not used. */
+void case_control_changes(const case_control *o, const case_control *c, int delta_t_fixed, char *buf,
+                          size_t len);
+/* stopAt's word (endTime, writeNow, noWriteNow, nextWrite). */
+const char *case_stop_at_name(int stop_at);
+
+/* deltaT of <case>/<tname>/uniform/time (as OpenFOAM's Time writes it),
+ * *has = 0 where the file or the entry is absent. */
+ump_status case_read_time_delta_t(const char *case_dir, const char *tname, double *delta_t, int *has,
+                                  ump_err *err);
+
 /* 1 if name can become one path component (a cloud or function-object
  * directory): non-empty, no '/', no "..". */
 int case_name_is_safe(const char *name);

@@ -67,6 +67,10 @@ ump_status fio_write_phi(const char *dir, const char *location, const pmesh *pm,
 /* dir/name with the len bytes of text, as they are (a file the solver
  * carries unchanged from the start time: meshlessFoam's pointDisplacement). */
 ump_status fio_write_text(const char *dir, const char *name, const char *text, size_t len, ump_err *err);
+/* <dir>/uniform/<object>: a dictionary with the FoamFile header and body
+ * (entries "key value;" as given). */
+ump_status fio_write_uniform_dict(const char *dir, const char *location, const char *object, const char *body,
+                                  ump_err *err);
 
 ump_status fio_write_uniform_time(const char *dir, const char *location,
                                   double value, const char *name, long index,

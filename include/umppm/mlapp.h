@@ -11,8 +11,14 @@
 
 #include "umppm/ump.h"
 
+/* Command-line options. */
+typedef struct mlapp_options {
+    int reseed;               /* -reseed: a restart time without its cloud seeds from alpha */
+    int no_function_objects;  /* -noFunctionObjects (none is run anyway) */
+} mlapp_options;
+
 /* The run. SIGINT/SIGTERM finish the current step, write it and return
  * UMP_OK (stopAt writeNow). */
-ump_status mlapp_run(const char *case_dir, ump_err *err);
+ump_status mlapp_run(const char *case_dir, const mlapp_options *opt, ump_err *err);
 
 #endif

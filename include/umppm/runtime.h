@@ -28,6 +28,7 @@ typedef struct rt_time {
     int precision_raised;  /* set when the last ++ raised precision (for a warning) */
     int delta_t_changed;   /* Time::deltaTchanged_: adjustTimeStep has set
                               delta_t, so a re-read keeps it (rt_reread) */
+    int restored;          /* delta_t restored from the start time (rt_restore_delta_t) */
     double cpu_start;      /* clock() at rt_init, seconds (writeControl cpuTime) */
     double wall_start;     /* time() at rt_init (writeControl clockTime) */
     char name[64];         /* time name of value */
@@ -76,5 +77,10 @@ void rt_set_initial_delta_t(rt_time *t, double courant_max);
  * startFrom and startTime are not re-read (Time's startTime_ is fixed).
  * The next rt_running/rt_advance use the new settings. */
 void rt_reread(rt_time *t, const case_control *c);
+/* A restart with adjustTimeStep: the deltaT saved in the start time's
+ * uniform/time (Time::setControls reads it then; setInitialDeltaT.H is then
+ * skipped, the time index not being 0). Without adjustTimeStep controlDict's
+ * deltaT stays, as OpenFOAM's. */
+void rt_restore_delta_t(rt_time *t, double delta_t);
 
 #endif

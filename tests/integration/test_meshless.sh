@@ -24,7 +24,10 @@
 #      the dam break by FPM to 0.06 s on 1 and 2 threads, the same cloud
 #      bit for bit; 3e. OpenFOAM's damBreak by FPM through the impact on
 #      the obstacle (t = 0.25 s), its front against interFoam's;
-#   4. refusals by name before the first step: a moving wall, an inflow
+#      the cloud written to 17 digits; a restart without its cloud refused
+#      (-reseed seeds);
+#   4. stopAt writeNow edited during a run (runTimeModifiable) heeded;
+#      refusals by name before the first step: a moving wall, an inflow
 #      patch, a symmetryPlane patch, a turbulence model, no constant/g,
 #      gravity out of the plane, an unknown meshless key, a key of the other
 #      method (MPS/FPM), three phases, alpha fractional everywhere, no
@@ -94,6 +97,25 @@ if run_in "$c" meshlessFoam env OMP_NUM_THREADS=2 "$MESHLESSFOAM" &&
         else
             echo "  FAIL restart: cloud not read, or the particle ids changed"
             fail=1
+        fi
+        # the cloud is the run's state: written to 17 digits whatever
+        # writePrecision (6 here) says (a restart from 6 digits had drifted,
+        # p_rgh 11 % from the uninterrupted run 0.05 s later)
+        x=$(sed -n '/^(/,/^)/p' "$rs/0.14/lagrangian/meshlessCloud/positions" | sed -n '2s/^((*\([^ ]*\) .*/\1/p')
+        nd=$(printf '%s' "$x" | tr -cd '0-9' | sed 's/^0*//' | wc -c)
+        check_range "significant digits of a written particle position ($x)" "$nd" 14 17
+        # a restart time without its cloud is refused, -reseed seeds it
+        # (it had been seeded from alpha without a word until 2026-12-06)
+        rm -rf "$rs/0.14/lagrangian"
+        foam_set "$rs" system/controlDict endTime 0.142
+        if (cd "$rs" && "$MESHLESSFOAM" > log.nocloud 2>&1); then
+            echo "  FAIL restart without its cloud ran"; fail=1
+        elif grep -q "the restart from time 0.14 has no particle cloud 'meshlessCloud' (cloudName); run with -reseed" \
+            "$rs/log.nocloud" && (cd "$rs" && "$MESHLESSFOAM" -reseed > log.reseed 2>&1) &&
+            grep -q '^Restart: -reseed: particles seeded from the fields of time 0.14' "$rs/log.reseed"; then
+            echo "  ok   a restart without its cloud refused; -reseed seeds from alpha"
+        else
+            echo "  FAIL restart without cloud:"; tail -2 "$rs/log.nocloud" "$rs/log.reseed"; fail=1
         fi
     else
         fail=1
@@ -411,6 +433,27 @@ if [ -d "$c/constant/polyMesh" ]; then
         echo "  FAIL sigma dictionary or function objects:"
         grep -E 'sigma|function|ERROR' "$r/log.sigmaDict" | sed 's/^/    /'
         fail=1
+    fi
+    # runTimeModifiable: stopAt writeNow set while time 0.01 is written
+    # ($EDITSHIM renames the prepared controlDict over the case's then) ends
+    # the run after the next step, written (until 2026-12-06 meshlessFoam
+    # did not watch controlDict)
+    if [ -n "${EDITSHIM:-}" ] && [ -e "$EDITSHIM" ]; then
+        fresh
+        foam_set "$r" system/controlDict runTimeModifiable yes
+        foam_set "$r" system/controlDict writeInterval 0.01
+        cp "$r/system/controlDict" "$r/controlDict.writeNow"
+        foam_set "$r" controlDict.writeNow stopAt writeNow
+        (cd "$r" && LD_PRELOAD=$EDITSHIM UMPPM_EDIT_TARGET="$r/system/controlDict" \
+            UMPPM_EDIT_AT="0.01=$r/controlDict.writeNow" "$MESHLESSFOAM" > log.writeNow 2>&1) || true
+        last=$(cd "$r" && ls -d 0.[0-9]* | sort -g | tail -n 1)
+        if grep -q '^controlDict: stopAt endTime -> writeNow' "$r/log.writeNow" && grep -q '^End' "$r/log.writeNow" &&
+            awk -v t="$last" 'BEGIN { exit !(t > 0.01 && t < 0.02) }'; then
+            echo "  ok   stopAt writeNow edited during the run: stopped and wrote $last"
+        else
+            echo "  FAIL stopAt writeNow during the run not heeded (last time $last):"
+            grep -E 'controlDict|End|ERROR' "$r/log.writeNow" | tail -3; fail=1
+        fi
     fi
     # the gas and sigma are named in the log of a normal run
     if grep -q 'air (nu .*) is not simulated' "$c/log.meshlessFoam" &&

@@ -3,7 +3,8 @@
 # test_nothing_lost.sh -- a run that fails or is killed never destroys good
 # time directories (issue 15, item 3). On the 20x20 cavity:
 #   1. overwrites (RENAME_EXCHANGE, and the two-rename fallback forced by the
-#      shim) replace the time directories and leave nothing hidden;
+#      shim) replace the time directories and leave nothing hidden, and
+#      keep the files other tools wrote there;
 #   2. hidden directories of killed runs are recovered or removed at
 #      start-up, with one log line each (also before startFrom latestTime);
 #   3. a restart without its cloud is an error naming the path; -reseed
@@ -80,6 +81,35 @@ if [ "$rc" -eq 0 ] && [ "$(dirsum "$d/0.01")" != "$s1" ] && [ -z "$(hidden "$d")
 else
     bad "fallback overwrite: exit $rc, hidden '$(hidden "$d")'"
 fi
+# files other tools wrote into a time directory survive its overwrite, as
+# with OpenFOAM's solvers (until 2026-12-06 the new version replaced the
+# whole directory: postProcess's vorticity and a user's notes were lost);
+# a cloud directory the run writes is its own (no old field beside new
+# positions), another cloud is kept
+echo note > "$d/0.01/myNotes"
+cp "$d/0.01/p" "$d/0.01/vorticity" && cp "$d/0.01/p" "$work/vorticity.ref"
+mkdir -p "$d/0.01/uniform/functionObjects" "$d/0.01/lagrangian/otherCloud"
+echo fo > "$d/0.01/uniform/functionObjects/functionObjectProperties"
+echo other > "$d/0.01/lagrangian/otherCloud/positions"
+echo stale > "$d/0.01/lagrangian/umppmCloud/staleField"
+for nox in 0 1; do
+    rc=0
+    if [ "$nox" = 1 ]; then
+        LD_PRELOAD=$KILLSHIM UMPPM_KILL_NOEXCHANGE=1 "$UMPPMFOAM" -case "$d" >"$d/log.keep$nox" 2>&1 || rc=$?
+    else
+        ump "$d" "keep$nox"
+    fi
+    if [ "$rc" -eq 0 ] && grep -q '^Time = 0.01$' "$d/log.keep$nox" && [ "$(cat "$d/0.01/myNotes")" = note ] &&
+        cmp -s "$d/0.01/vorticity" "$work/vorticity.ref" &&
+        [ "$(cat "$d/0.01/uniform/functionObjects/functionObjectProperties")" = fo ] &&
+        [ -f "$d/0.01/uniform/time" ] && [ "$(cat "$d/0.01/lagrangian/otherCloud/positions")" = other ] &&
+        [ ! -e "$d/0.01/lagrangian/umppmCloud/staleField" ] && [ -z "$(hidden "$d")" ]; then
+        ok "overwrite ($([ "$nox" = 1 ] && echo two renames || echo RENAME_EXCHANGE)) keeps the files others wrote in 0.01"
+    else
+        bad "overwrite ($nox) lost other files of 0.01: exit $rc, $(ls "$d/0.01" | tr '\n' ' ')"
+    fi
+    echo stale > "$d/0.01/lagrangian/umppmCloud/staleField"
+done
 
 d=$(fresh purge)
 setctl "$d" purgeWrite 1
