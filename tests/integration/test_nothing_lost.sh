@@ -8,7 +8,8 @@
 #   2. hidden directories of killed runs are recovered or removed at
 #      start-up, with one log line each (also before startFrom latestTime);
 #   3. a restart without its cloud is an error naming the path; -reseed
-#      seeds;
+#      seeds; a cloud whose fields icoFoam rewrote is refused; an
+#      adjustTimeStep restart continues with uniform/time's deltaT;
 #   4. a file in the way of a time directory is an error (before the run
 #      when the write times are known, else at write time) and is kept;
 #   5. umppmFoam > /dev/full exits non-zero;
@@ -26,7 +27,7 @@ set -eu -o pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
-for v in UMPPMFOAM KILLSHIM; do
+for v in UMPPMFOAM KILLSHIM TOOLDIR; do
     if [ -z "${!v:-}" ] || [ ! -e "${!v}" ]; then
         echo "test_nothing_lost.sh: FAIL: $v is not set to an existing file" >&2
         exit 2
@@ -174,6 +175,48 @@ if [ "$rc" -eq 0 ] && grep -q '^Restart: -reseed: particles seeded from the fiel
     ok "-reseed seeds and runs"
 else
     bad "-reseed: exit $rc"
+fi
+# a cloud whose fields another solver rewrote: icoFoam run into the same
+# time directories with the lid at 2 (umppmFoam's uniform/umppmFoam and
+# cloud stay there) must not be continued from the old particles (it was,
+# without a word, until 2026-12-06)
+d=$(fresh digest)
+ump "$d" first
+sed -i 's/uniform (1 0 0)/uniform (2 0 0)/' "$d/0/U"
+setctl "$d" endTime 0.02
+if run_in "$d" icoFoam icoFoam && [ -f "$d/0.02/uniform/umppmFoam" ]; then
+    setctl "$d" startFrom latestTime
+    setctl "$d" endTime 0.03
+    ump "$d" digest
+    msg=$(head -n 1 "$d/err.digest")
+    if [ "$rc" -ne 0 ] && [ "$rc" -lt 128 ] &&
+        printf '%s' "$msg" | grep -q 'the fields of time 0.02 are not those written with this particle cloud.*-reseed'; then
+        ok "refused: $msg"
+    else
+        bad "a cloud whose fields icoFoam rewrote: exit $rc, '$msg'"
+    fi
+else
+    bad "icoFoam into umppmFoam's times failed, or removed uniform/umppmFoam"
+fi
+# adjustTimeStep: a restart goes on with uniform/time's deltaT, as
+# OpenFOAM's Time: the same fields as the uninterrupted run (until
+# 2026-12-06 it started again from controlDict's deltaT: 1.6 % apart)
+d=$(fresh adjust)
+echo 'adjustTimeStep yes; maxCo 0.5; maxDeltaT 1;' >> "$d/system/controlDict"
+setctl "$d" deltaT 0.001
+setctl "$d" writeControl adjustableRunTime
+setctl "$d" writeInterval 0.1
+setctl "$d" endTime 0.3
+ump "$d" full
+cp -R "$d" "$d.r" && rm -rf "$d.r/0.3"
+setctl "$d.r" startFrom latestTime
+ump "$d.r" restart
+if [ "$rc" -eq 0 ] && grep -q '^deltaT = .* from 0.2/uniform/time (adjustTimeStep)' "$d.r/log.restart" &&
+    [ -f "$d/0.3/U" ] && [ -f "$d.r/0.3/U" ]; then
+    du=$("$TOOLDIR/foamCompare" "$d" 0.3 "$d.r" 0.3 U 2>&1 | awk '$1 == "U" { print $4 }')
+    check_below "adjustTimeStep restart at 0.2: U at 0.3 from the uninterrupted run (L2 relative)" "$du" 1e-6
+else
+    bad "adjustTimeStep restart: exit $rc"
 fi
 
 echo "== 4. a file in the way of a time directory"
