@@ -430,7 +430,21 @@ static int copy_file(const char *src, const char *dst, mode_t mode)
  * under lagrangian/ that the new version has is the new version's alone
  * (an old cloud field beside new positions would not match their count);
  * any other directory in both, and any file in both, is the new one's.
- * Returns 0, or -1 with errno. */
+ * Not kept either: the fluxes and old-time levels of the flow the new
+ * version replaces (phi, meshPhi, alphaPhi*, *_0), which an OpenFOAM solver
+ * continuing from this time would read with the new fields. Returns 0, or
+ * -1 with errno. */
+static int flow_state(const char *file)
+{
+    char name[256];
+    snprintf(name, sizeof name, "%s", file);
+    size_t n = strlen(name);
+    if (n > 3 && strcmp(name + n - 3, ".gz") == 0)
+        name[n -= 3] = '\0';
+    return strcmp(name, "phi") == 0 || strcmp(name, "meshPhi") == 0 || strncmp(name, "alphaPhi", 8) == 0 ||
+           (n > 2 && strcmp(name + n - 2, "_0") == 0);
+}
+
 static int keep_others(const char *src, const char *dst, int level)
 {
     DIR *d = opendir(src);
@@ -462,6 +476,8 @@ static int keep_others(const char *src, const char *dst, int level)
         }
         if (errno != ENOENT) {
             rc = -1;
+        } else if (level == 0 && !S_ISDIR(ss.st_mode) && flow_state(e->d_name)) {
+            continue; /* the replaced flow's flux or old-time level */
         } else if (S_ISDIR(ss.st_mode)) {
             rc = mkdir(t, ss.st_mode & 0777) != 0 ? -1 : keep_others(s, t, 3);
         } else if (S_ISLNK(ss.st_mode)) {

@@ -93,6 +93,7 @@ mkdir -p "$d/0.01/uniform/functionObjects" "$d/0.01/lagrangian/otherCloud"
 echo fo > "$d/0.01/uniform/functionObjects/functionObjectProperties"
 echo other > "$d/0.01/lagrangian/otherCloud/positions"
 echo stale > "$d/0.01/lagrangian/umppmCloud/staleField"
+echo stale > "$d/0.01/U_0" # an old-time level of the replaced flow: not kept
 for nox in 0 1; do
     rc=0
     if [ "$nox" = 1 ]; then
@@ -104,12 +105,13 @@ for nox in 0 1; do
         cmp -s "$d/0.01/vorticity" "$work/vorticity.ref" &&
         [ "$(cat "$d/0.01/uniform/functionObjects/functionObjectProperties")" = fo ] &&
         [ -f "$d/0.01/uniform/time" ] && [ "$(cat "$d/0.01/lagrangian/otherCloud/positions")" = other ] &&
-        [ ! -e "$d/0.01/lagrangian/umppmCloud/staleField" ] && [ -z "$(hidden "$d")" ]; then
+        [ ! -e "$d/0.01/lagrangian/umppmCloud/staleField" ] && [ ! -e "$d/0.01/U_0" ] && [ -z "$(hidden "$d")" ]; then
         ok "overwrite ($([ "$nox" = 1 ] && echo two renames || echo RENAME_EXCHANGE)) keeps the files others wrote in 0.01"
     else
         bad "overwrite ($nox) lost other files of 0.01: exit $rc, $(ls "$d/0.01" | tr '\n' ' ')"
     fi
     echo stale > "$d/0.01/lagrangian/umppmCloud/staleField"
+    echo stale > "$d/0.01/U_0"
 done
 
 d=$(fresh purge)
