@@ -492,11 +492,12 @@ static ump_status check_digest(const app *a, const char *dir, const char *tname,
         return UMP_OK; /* written before 2026-12-06, or not by umppmFoam */
     foam_file *f = NULL;
     UMP_CALL(foam_file_read(path, &f, err));
-    const char *fmt = NULL;
+    const char *fmt = NULL, *cloud = NULL;
     int64_t prec = 6, nc = 0;
     double su[3], qu, st = 0, qt = 0;
     ump_status rc;
-    if ((rc = foam_get_word_or(f->dict, "writeFormat", "ascii", &fmt, err)) != UMP_OK ||
+    if ((rc = foam_get_word_or(f->dict, "cloudName", a->um.cloud_name, &cloud, err)) != UMP_OK ||
+        (rc = foam_get_word_or(f->dict, "writeFormat", "ascii", &fmt, err)) != UMP_OK ||
         (rc = foam_get_label_or(f->dict, "writePrecision", 6, &prec, err)) != UMP_OK ||
         (rc = foam_get_label(f->dict, "nCells", &nc, err)) != UMP_OK ||
         (rc = foam_get_vector(f->dict, "U_sum", su, err)) != UMP_OK ||
@@ -508,6 +509,15 @@ static ump_status check_digest(const app *a, const char *dir, const char *tname,
         return rc;
     }
     int binary = strcmp(fmt, "binary") == 0;
+    if (strcmp(cloud, a->um.cloud_name) != 0) {
+        rc = UMP_FAIL(err, UMP_ERR_INPUT,
+                      "%s/lagrangian/%s: the fields of time %s were written with the cloud '%s', not with this "
+                      "one (cloudName changed?); its particles would not go with these fields; run with -reseed "
+                      "to seed new particles from the fields of time %s", dir, a->um.cloud_name, tname, cloud,
+                      tname);
+        foam_file_free(&f);
+        return rc;
+    }
     foam_file_free(&f);
     /* the round-off of the writes: the one recorded, or a conversion since
      * (foamFormatConvert) at this controlDict's precision */
@@ -518,17 +528,20 @@ static ump_status check_digest(const app *a, const char *dir, const char *tname,
     int same = (int64_t)a->U->ncells == nc && fabs(rq - qu) <= 2 * tol * fmax(qu, rq) + 1e-300;
     for (int k = 0; k < 3; k++)
         same &= fabs(ru[k] - su[k]) <= tol * scale;
-    if (a->T && qt > 0) {
+    const char *which = "U";
+    double now = rq, then = qu;
+    if (same && a->T && qt > 0) {
         field_digest(a->T, rt, &rtq);
         same &= fabs(rt[0] - st) <= tol * sqrt(n * fmax(qt, rtq)) && fabs(rtq - qt) <= 2 * tol * fmax(qt, rtq);
+        which = "T", now = rtq, then = qt;
     }
     if (!same)
         return UMP_FAIL(err, UMP_ERR_INPUT,
-                        "%s/lagrangian/%s: the fields of time %s are not those written with this particle cloud (another "
-                        "solver writing into the time directory, mapFields or setFields changed them: sum of "
-                        "|U|^2 %.9g, written %.9g); its particles would continue the run that wrote them; run "
+                        "%s/lagrangian/%s: the fields of time %s are not those written with this particle cloud "
+                        "(another solver writing into the time directory, mapFields or setFields changed them: sum "
+                        "of %s^2 %.9g, written %.9g); its particles would continue the run that wrote them; run "
                         "with -reseed to seed new particles from the fields of time %s", dir,
-                        a->um.cloud_name, tname, rq, qu, tname);
+                        a->um.cloud_name, tname, which, now, then, tname);
     return UMP_OK;
 }
 
@@ -869,10 +882,23 @@ static ump_status read_start_field(app *a, const char *tname, const char *name, 
 }
 
 /* 1 if the tokens of a value (uniform x, nonuniform List<scalar> n (...),
- * binary or not) hold no number but zeros (the list's size n aside). */
+ * binary or not, a Function1 `constant x` or `table ((t x) ...)`) hold no
+ * number but zeros (the list's size n and a table's times aside). */
 static int tokens_zero(const foam_token *t, size_t n)
 {
+    int table = n > 0 && t[0].type == FOAM_TOK_WORD && strcmp(t[0].v.str, "table") == 0;
+    int depth = 0, elem = 0;
     for (size_t i = 0; i < n; i++) {
+        if (t[i].type == FOAM_TOK_PUNCT && t[i].v.punct == '(') {
+            depth++, elem = 0;
+            continue;
+        }
+        if (t[i].type == FOAM_TOK_PUNCT && t[i].v.punct == ')') {
+            depth--;
+            continue;
+        }
+        if (table && depth == 2 && elem++ == 0)
+            continue; /* a table row's time */
         if (t[i].type == FOAM_TOK_LABEL && i > 0 && t[i - 1].type == FOAM_TOK_WORD &&
             strncmp(t[i - 1].v.str, "List", 4) == 0)
             continue; /* the size of a nonuniform list */
@@ -899,14 +925,15 @@ static ump_status check_alphat(const foam_file *f, const char *path, ump_err *er
         return UMP_FAIL(err, UMP_ERR_PARSE, "%s: boundaryField dictionary is missing", path);
     static const char *const reset[] = {"calculated", "zeroGradient", "empty", "cyclic", "symmetryPlane",
                                         "symmetry", "wedge", "processor"};
-    static const char *const keys[] = {"value", "gradient", "uniformValue", "refValue", "refGradient"};
+    static const char *const keys[] = {"value", "gradient", "uniformValue", "refValue", "refGradient", "inletValue"};
     for (size_t i = 0; i < bf->n; i++) {
         const foam_entry *e = &bf->e[i];
         const char *type = NULL;
         if (!e->dict)
             continue;
         UMP_CALL(foam_get_word(e->dict, "type", &type, err));
-        int keeps = 1;
+        /* wall functions recompute alphat from nut, zero in laminar flow */
+        int keeps = !strstr(type, "WallFunction");
         for (size_t k = 0; k < sizeof reset / sizeof *reset; k++)
             keeps &= strcmp(type, reset[k]) != 0;
         for (size_t k = 0; keeps && k < sizeof keys / sizeof *keys; k++) {
@@ -926,14 +953,17 @@ static ump_status check_alphat(const foam_file *f, const char *path, ump_err *er
  * lets the buoyancy flux phig = -gh_f snGrad(rhok) |S_f| cross the patch
  * (non-zero at a wall hotter or colder than its cells); umppmFoam's
  * pressure equation is in fluxes and keeps the flux U_b . S_f, i.e.
- * fixedFluxPressure: a different answer, so refused by name. */
+ * fixedFluxPressure: a different answer, so refused by name where T is
+ * fixed there (fixedValue, inletOutlet). Where T is zeroGradient (an
+ * adiabatic wall) snGrad(rhok) = 0 and the two conditions agree. */
 static ump_status check_prgh_walls(const app *a, const char *tname, ump_err *err)
 {
     for (int p = 0; p < a->pm->npatches; p++)
         if (a->pm->patch[p].n > 0 && a->prgh->patch[p].type == FLD_BC_ZEROGRADIENT &&
-            fld_bc_is_fixed(a->U->patch[p].type))
+            fld_bc_is_fixed(a->U->patch[p].type) &&
+            (fld_bc_is_fixed(a->T->patch[p].type) || a->T->patch[p].type == FLD_BC_INLETOUTLET))
             return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                            "%s/%s/p_rgh: patch '%s': zeroGradient p_rgh where U is fixed (%s) is not implemented "
+                            "%s/%s/p_rgh: patch '%s': zeroGradient p_rgh where U (%s) and T are fixed is not implemented "
                             "by umppmFoam: buoyantBoussinesqPimpleFoam lets the buoyancy flux through such a "
                             "patch, umppmFoam keeps the flux of U as fixedFluxPressure does; use "
                             "fixedFluxPressure, as OpenFOAM's buoyant tutorials do", a->case_dir,

@@ -165,10 +165,11 @@ ump_status case_read_control(const char *case_dir, case_control *c, ump_err *err
                        : tprec < 1 || tprec > 30 ? "timePrecision" : !(c->max_co > 0) ? "maxCo" : NULL;
     if (badkey) {
         const foam_entry *e = foam_dict_find(d, badkey, 0);
-        double v = purge < 0 ? (double)purge : wprec < 1 || wprec > 30 ? (double)wprec
-                 : tprec < 1 || tprec > 30 ? (double)tprec : c->max_co;
+        int is_purge = purge < 0, is_co = !is_purge && badkey[0] == 'm';
+        double v = is_purge ? (double)purge : badkey[0] == 'w' ? (double)wprec
+                 : badkey[0] == 't' ? (double)tprec : c->max_co;
         rc = UMP_FAIL(err, UMP_ERR_INPUT, "%s:%d: %s %g: must be %s", f->path, e ? e->line : 0, badkey, v,
-                      purge < 0 ? ">= 0 (0: keep every time)" : !(c->max_co > 0) ? "positive" : "in 1..30");
+                      is_purge ? ">= 0 (0: keep every time)" : is_co ? "positive" : "in 1..30");
         goto done;
     }
     /* OpenFOAM clamps writePrecision silently to what a double can carry */

@@ -430,8 +430,10 @@ static int copy_file(const char *src, const char *dst, mode_t mode)
  * under lagrangian/ that the new version has is the new version's alone
  * (an old cloud field beside new positions would not match their count);
  * any other directory in both, and any file in both, is the new one's.
- * Not kept either: the fluxes and old-time levels of the flow the new
- * version replaces (phi, meshPhi, alphaPhi*, *_0), which an OpenFOAM solver
+ * A file X is the new version's also where it has X.gz (or the reverse):
+ * the plain name is read first. Not kept either: the fluxes and old-time
+ * levels of the flow the new version replaces (phi, meshPhi, alphaPhi*,
+ * Uf, ddt0(*), *_0), which an OpenFOAM solver
  * continuing from this time would read with the new fields. Returns 0, or
  * -1 with errno. */
 static int flow_state(const char *file)
@@ -442,7 +444,23 @@ static int flow_state(const char *file)
     if (n > 3 && strcmp(name + n - 3, ".gz") == 0)
         name[n -= 3] = '\0';
     return strcmp(name, "phi") == 0 || strcmp(name, "meshPhi") == 0 || strncmp(name, "alphaPhi", 8) == 0 ||
-           (n > 2 && strcmp(name + n - 2, "_0") == 0);
+           strcmp(name, "Uf") == 0 || strncmp(name, "ddt0(", 5) == 0 || (n > 2 && strcmp(name + n - 2, "_0") == 0);
+}
+
+/* Does dst hold name, or its other form (X and X.gz are one field: a stale
+ * plain X would shadow a new X.gz)? */
+static int new_has(const char *dst, const char *name)
+{
+    char t[4400];
+    struct stat st;
+    size_t n = strlen(name);
+    if ((size_t)snprintf(t, sizeof t, "%s/%s", dst, name) < sizeof t && lstat(t, &st) == 0)
+        return 1;
+    if (n > 3 && strcmp(name + n - 3, ".gz") == 0)
+        snprintf(t, sizeof t, "%s/%.*s", dst, (int)(n - 3), name);
+    else
+        snprintf(t, sizeof t, "%s/%s.gz", dst, name);
+    return lstat(t, &st) == 0;
 }
 
 static int keep_others(const char *src, const char *dst, int level)
@@ -476,10 +494,12 @@ static int keep_others(const char *src, const char *dst, int level)
         }
         if (errno != ENOENT) {
             rc = -1;
+        } else if (!S_ISDIR(ss.st_mode) && new_has(dst, e->d_name)) {
+            continue; /* X beside a new X.gz, or the reverse */
         } else if (level == 0 && !S_ISDIR(ss.st_mode) && flow_state(e->d_name)) {
             continue; /* the replaced flow's flux or old-time level */
         } else if (S_ISDIR(ss.st_mode)) {
-            rc = mkdir(t, ss.st_mode & 0777) != 0 ? -1 : keep_others(s, t, 3);
+            rc = mkdir(t, 0777) != 0 ? -1 : keep_others(s, t, 3); /* (writable: filled here) */
         } else if (S_ISLNK(ss.st_mode)) {
             char l[4400];
             ssize_t n = readlink(s, l, sizeof l - 1);

@@ -359,6 +359,22 @@ done:
     return rc;
 }
 
+/* A scalar field of calculated patches (empty on empty ones), zero. */
+static ump_status calculated_field(const mlapp *a, const char *name, fld_field **out, ump_err *err)
+{
+    ump_idx *sizes = ump_alloc_array((size_t)a->pm->npatches + 1, sizeof *sizes);
+    UMP_CHECK(sizes, err, UMP_ERR_NOMEM, "out of memory");
+    for (int p = 0; p < a->pm->npatches; p++)
+        sizes[p] = a->pm->patch[p].n;
+    ump_status rc = fld_create(name, 1, a->m->ncells, a->pm->npatches, sizes, out, err);
+    free(sizes);
+    UMP_CALL(rc);
+    for (int p = 0; p < a->pm->npatches; p++)
+        if (a->pm->patch[p].kind == PMESH_EMPTY)
+            (*out)->patch[p].type = FLD_BC_EMPTY;
+    return UMP_OK;
+}
+
 static ump_status read_case(mlapp *a, const char *tname, ump_err *err)
 {
     printf("Reading transportProperties\n\n");
@@ -408,8 +424,20 @@ static ump_status read_case(mlapp *a, const char *tname, ump_err *err)
      * values are the particles'; their pressure needs no conditions); it
      * had not been read until 2026-12-06, and the `calculated` patches
      * written stopped interFoam restarting there */
-    UMP_CALL(read_field(a, tname, "p_rgh", 1, &a->prgh, err));
     static const double pa[7] = {1, -1, -2, 0, 0, 0, 0}; /* kg m^-1 s^-2, as interFoam */
+    ump_err pe;
+    ump_status prc = read_field(a, tname, "p_rgh", 1, &a->prgh, &pe);
+    if (prc == UMP_ERR_UNSUPPORTED) {
+        /* a condition the writer does not know (prghTotalPressure, ...):
+         * meshlessFoam does not need it; p_rgh is written calculated */
+        printf("--> meshlessFoam Warning: %s: p_rgh is written with calculated patches, on which interFoam "
+               "cannot restart\n\n", pe.msg);
+        UMP_CALL(calculated_field(a, "p_rgh", &a->prgh, err));
+        memcpy(a->prgh->dims, pa, sizeof pa);
+    } else if (prc != UMP_OK) {
+        *err = pe;
+        return prc;
+    }
     for (int k = 0; k < 7; k++)
         if (a->prgh->dims[k] != pa[k])
             return UMP_FAIL(err, UMP_ERR_INPUT, "%s/%s/p_rgh: dimensions [%g %g %g %g %g %g %g]; p_rgh must have "
@@ -417,17 +445,8 @@ static ump_status read_case(mlapp *a, const char *tname, ump_err *err)
                             a->prgh->dims[1], a->prgh->dims[2], a->prgh->dims[3], a->prgh->dims[4],
                             a->prgh->dims[5], a->prgh->dims[6]);
     /* p: calculated, as interFoam's (p_rgh + rho gh) */
-    ump_idx *sizes = ump_alloc_array((size_t)a->pm->npatches + 1, sizeof *sizes);
-    UMP_CHECK(sizes, err, UMP_ERR_NOMEM, "out of memory");
-    for (int p = 0; p < a->pm->npatches; p++)
-        sizes[p] = a->pm->patch[p].n;
-    ump_status rc = fld_create("p", 1, m->ncells, a->pm->npatches, sizes, &a->p, err);
-    free(sizes);
-    UMP_CALL(rc);
+    UMP_CALL(calculated_field(a, "p", &a->p, err));
     memcpy(a->p->dims, pa, sizeof pa);
-    for (int p = 0; p < a->pm->npatches; p++)
-        if (a->pm->patch[p].kind == PMESH_EMPTY)
-            a->p->patch[p].type = FLD_BC_EMPTY;
     return UMP_OK;
 }
 
@@ -1226,8 +1245,8 @@ ump_status mlapp_run(const char *case_dir, const mlapp_options *opt, ump_err *er
     else if (a.ph.sigma_model[0])
         printf("Surface tension: sigma { type %s; } is read and not simulated (not implemented by "
                "meshlessFoam)\n", a.ph.sigma_model);
-    char fos[512];
-    if ((rc = fob_names(case_dir, fos, sizeof fos, err)) != UMP_OK)
+    char fos[512] = "";
+    if (!a.opt.no_function_objects && (rc = fob_names(case_dir, fos, sizeof fos, err)) != UMP_OK)
         goto done;
     if (fos[0] && !a.opt.no_function_objects)
         printf("--> meshlessFoam Warning: function objects are not run by meshlessFoam (ignored): %s\n", fos);

@@ -418,17 +418,22 @@ if [ -d "$c/constant/polyMesh" ]; then
     expect_refusal unknownBC "boundary condition type 'partialSlip' is not supported by meshlessFoam"
     # v1912's surfaceTensionModel form of sigma is read (it was refused
     # until 2026-12-06), and function objects, which meshlessFoam does not
-    # run, are named in a warning (they were dropped without a word)
+    # run, are named in a warning (they were dropped without a word); a
+    # p_rgh condition the writer does not know runs, written calculated with
+    # a warning
     fresh
     sed -i 's/^sigma .*/sigma { type constant; sigma 0.07; }/' "$r/constant/transportProperties"
+    foam_set "$r" 0/p_rgh boundaryField/atmosphere "{ type prghTotalPressure; p0 uniform 0; value uniform 0; }"
     sed -i '/^writeInterval/a functions { probe1 { type probes; fields (p); probeLocations ((0.1 0.1 0.005)); } off { type probes; enabled false; } }' "$r/system/controlDict"
     dt=$(foamDictionary "$r/system/controlDict" -entry deltaT -value)
     foam_set "$r" system/controlDict endTime "$dt"
     if (cd "$r" && "$MESHLESSFOAM") > "$r/log.sigmaDict" 2>&1 &&
         grep -q 'sigma 0.07 is read and not simulated' "$r/log.sigmaDict" &&
         grep -q 'Warning: function objects are not run by meshlessFoam (ignored): probe1 (probes)$' \
+            "$r/log.sigmaDict" &&
+        grep -q "Warning: .*'prghTotalPressure' is not supported by meshlessFoam .*: p_rgh is written with calculated patches" \
             "$r/log.sigmaDict"; then
-        echo "  ok   sigma { type constant; sigma 0.07; } read; the function object named as not run"
+        echo "  ok   sigma { type constant; sigma 0.07; } read; the function object named as not run; prghTotalPressure written calculated, with a warning"
     else
         echo "  FAIL sigma dictionary or function objects:"
         grep -E 'sigma|function|ERROR' "$r/log.sigmaDict" | sed 's/^/    /'

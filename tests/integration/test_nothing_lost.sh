@@ -113,6 +113,15 @@ for nox in 0 1; do
     echo stale > "$d/0.01/lagrangian/umppmCloud/staleField"
     echo stale > "$d/0.01/U_0"
 done
+# X and X.gz are one field: a plain U of the old version must not shadow
+# the new U.gz (the plain name is read first)
+setctl "$d" writeCompression on
+ump "$d" gz
+if [ "$rc" -eq 0 ] && [ -f "$d/0.01/U.gz" ] && [ ! -e "$d/0.01/U" ] && [ -f "$d/0.01/myNotes" ]; then
+    ok "overwrite with writeCompression on: U.gz replaces U, the notes stay"
+else
+    bad "writeCompression overwrite: exit $rc, $(ls "$d/0.01" | tr '\n' ' ')"
+fi
 
 d=$(fresh purge)
 setctl "$d" purgeWrite 1
