@@ -433,9 +433,9 @@ static int copy_file(const char *src, const char *dst, mode_t mode)
  * A file X is the new version's also where it has X.gz (or the reverse):
  * the plain name is read first. Not kept either: the fluxes and old-time
  * levels of the flow the new version replaces (phi, meshPhi, alphaPhi*,
- * Uf, ddt0(*), *_0), which an OpenFOAM solver
- * continuing from this time would read with the new fields. Returns 0, or
- * -1 with errno. */
+ * Uf, ddt0(*), *_0) and its moved mesh (polyMesh/), which an OpenFOAM
+ * solver continuing from this time, or ParaView, would read with the new
+ * fields. Returns 0, or -1 with errno. */
 static int flow_state(const char *file)
 {
     char name[256];
@@ -498,6 +498,8 @@ static int keep_others(const char *src, const char *dst, int level)
             continue; /* X beside a new X.gz, or the reverse */
         } else if (level == 0 && !S_ISDIR(ss.st_mode) && flow_state(e->d_name)) {
             continue; /* the replaced flow's flux or old-time level */
+        } else if (level == 0 && S_ISDIR(ss.st_mode) && strcmp(e->d_name, "polyMesh") == 0) {
+            continue; /* the replaced run's moved mesh (a swaying container's) */
         } else if (S_ISDIR(ss.st_mode)) {
             rc = mkdir(t, 0777) != 0 ? -1 : keep_others(s, t, 3); /* (writable: filled here) */
         } else if (S_ISLNK(ss.st_mode)) {

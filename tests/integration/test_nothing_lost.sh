@@ -94,6 +94,7 @@ echo fo > "$d/0.01/uniform/functionObjects/functionObjectProperties"
 echo other > "$d/0.01/lagrangian/otherCloud/positions"
 echo stale > "$d/0.01/lagrangian/umppmCloud/staleField"
 echo stale > "$d/0.01/U_0" # an old-time level of the replaced flow: not kept
+mkdir -p "$d/0.01/polyMesh" && echo stale > "$d/0.01/polyMesh/points" # nor a moved mesh
 for nox in 0 1; do
     rc=0
     if [ "$nox" = 1 ]; then
@@ -105,13 +106,14 @@ for nox in 0 1; do
         cmp -s "$d/0.01/vorticity" "$work/vorticity.ref" &&
         [ "$(cat "$d/0.01/uniform/functionObjects/functionObjectProperties")" = fo ] &&
         [ -f "$d/0.01/uniform/time" ] && [ "$(cat "$d/0.01/lagrangian/otherCloud/positions")" = other ] &&
-        [ ! -e "$d/0.01/lagrangian/umppmCloud/staleField" ] && [ ! -e "$d/0.01/U_0" ] && [ -z "$(hidden "$d")" ]; then
+        [ ! -e "$d/0.01/lagrangian/umppmCloud/staleField" ] && [ ! -e "$d/0.01/U_0" ] && [ ! -e "$d/0.01/polyMesh" ] && [ -z "$(hidden "$d")" ]; then
         ok "overwrite ($([ "$nox" = 1 ] && echo two renames || echo RENAME_EXCHANGE)) keeps the files others wrote in 0.01"
     else
         bad "overwrite ($nox) lost other files of 0.01: exit $rc, $(ls "$d/0.01" | tr '\n' ' ')"
     fi
     echo stale > "$d/0.01/lagrangian/umppmCloud/staleField"
     echo stale > "$d/0.01/U_0"
+    mkdir -p "$d/0.01/polyMesh" && echo stale > "$d/0.01/polyMesh/points"
 done
 # X and X.gz are one field: a plain U of the old version must not shadow
 # the new U.gz (the plain name is read first)
