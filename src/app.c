@@ -546,37 +546,49 @@ static ump_status check_digest(const app *a, const char *dir, const char *tname,
 }
 
 /* Restart: particles of the start time's cloud replace the seeded ones. */
+ump_status app_restart_policy(const char *case_dir, const char *tname, const char *cloud, int reseed,
+                              const char *seed_from, int *restart, ump_err *err)
+{
+    char dir[4400], cl[4600], path[4700], co[4700], ut[4600];
+    snprintf(dir, sizeof dir, "%s/%s", case_dir, tname);
+    snprintf(cl, sizeof cl, "%s/lagrangian/%s", dir, cloud);
+    snprintf(path, sizeof path, "%s/positions", cl);
+    snprintf(co, sizeof co, "%s/coordinates", cl);
+    snprintf(ut, sizeof ut, "%s/uniform/time", dir);
+    int has = foam_file_exists(path);
+    *restart = has && !reseed;
+    if (reseed) {
+        printf("Restart: -reseed: particles seeded from the fields of time %s%s\n\n", tname,
+               has ? " (its cloud is not read)" : "");
+        return UMP_OK;
+    }
+    if (has)
+        return UMP_OK;
+    /* a time some solver wrote (uniform/time) or one with the cloud's
+     * directory is a restart: its particles are part of the state */
+    struct stat st;
+    if (foam_file_exists(co)) /* v1912's barycentric cloud: needs the mesh's tet decomposition */
+        return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
+                        "%s: not found: the cloud '%s' of time %s has only 'coordinates', OpenFOAM's barycentric "
+                        "format (as mapFields and decomposePar write it), which %s does not read; run with "
+                        "-reseed to seed new particles from %s of time %s", path, cloud, tname, ump_solver,
+                        seed_from, tname);
+    if (stat(ut, &st) == 0 || stat(cl, &st) == 0)
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: not found: the restart from time %s has no particle cloud '%s' "
+                        "(cloudName); run with -reseed to seed new particles from %s", path, tname, cloud,
+                        seed_from);
+    return UMP_OK; /* a first start (e.g. 0/): the particles are seeded */
+}
+
 static ump_status restart_cloud(app *a, const char *tname, ump_err *err)
 {
     char dir[4400], path[4600];
     snprintf(dir, sizeof dir, "%s/%s", a->case_dir, tname);
-    snprintf(path, sizeof path, "%s/lagrangian/%s/positions", dir, a->um.cloud_name);
-    if (a->opt.reseed) {
-        printf("Restart: -reseed: particles seeded from the fields of time %s%s\n\n", tname,
-               foam_file_exists(path) ? " (its cloud is not read)" : "");
+    int restart;
+    UMP_CALL(app_restart_policy(a->case_dir, tname, a->um.cloud_name, a->opt.reseed, "the fields", &restart,
+                                err));
+    if (!restart)
         return UMP_OK;
-    }
-    if (!foam_file_exists(path)) {
-        /* a time some solver wrote (uniform/time) or one with the cloud's
-         * directory is a restart: its particles are part of the state */
-        char ut[4600], cl[4600];
-        struct stat st;
-        snprintf(ut, sizeof ut, "%s/uniform/time", dir);
-        snprintf(cl, sizeof cl, "%s/lagrangian/%s", dir, a->um.cloud_name);
-        char co[4700];
-        snprintf(co, sizeof co, "%s/coordinates", cl);
-        if (foam_file_exists(co)) /* v1912's barycentric cloud: needs the mesh's tet decomposition */
-            return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                            "%s: not found: the cloud '%s' of time %s has only 'coordinates', OpenFOAM's "
-                            "barycentric format (as mapFields and decomposePar write it), which umppmFoam does "
-                            "not read; run with -reseed to seed new particles from the fields of time %s",
-                            path, a->um.cloud_name, tname, tname);
-        if (stat(ut, &st) == 0 || stat(cl, &st) == 0)
-            return UMP_FAIL(err, UMP_ERR_IO, "%s: not found: the restart from time %s has no particle cloud "
-                            "'%s' (cloudName); run with -reseed to seed new particles from the fields",
-                            path, tname, a->um.cloud_name);
-        return UMP_OK; /* a first start (e.g. 0/): the particles are seeded */
-    }
     size_t n = 0, dropped = 0;
     double *pos = NULL, *vel = NULL, *xy = NULL, *T = NULL;
     int64_t *id = NULL;
@@ -1337,21 +1349,42 @@ ump_status app_recover(const char *case_dir, ump_err *err)
  * with the settings it has; otherwise t, a->ctl and the function objects
  * take the new settings. Only running out of memory, or a file in the way
  * of a write time the new settings plan, is an error. */
-static ump_status reread_control(app *a, rt_time *t, double t0, const char *tname, long step, ump_err *err)
+int app_control_modified(const char *path, const char *shown, case_stamp *stamp, int *missing)
 {
     case_stamp now;
-    if (case_file_stamp(a->ctl_path, &now) != 0) {
-        if (!a->ctl_missing)
-            printf("--> umppmFoam Warning: %s: cannot read (%s); the run continues with the settings it has\n",
-                   a->ctl_abs, strerror(errno));
-        a->ctl_missing = 1;
-        return UMP_OK;
+    if (case_file_stamp(path, &now) != 0) {
+        if (!*missing)
+            printf("--> %s Warning: %s: cannot read (%s); the run continues with the settings it has\n",
+                   ump_solver, shown, strerror(errno));
+        *missing = 1;
+        return 0;
     }
-    a->ctl_missing = 0;
-    if (case_stamp_equal(&now, &a->ctl_stamp))
+    *missing = 0;
+    if (case_stamp_equal(&now, stamp))
+        return 0;
+    *stamp = now;
+    printf("regIOobject::readIfModified() : Re-reading object controlDict from file \"%s\"\n", shown);
+    return 1;
+}
+
+int app_control_apply(rt_time *t, case_control *ctl, const case_control *c)
+{
+    char what[2048];
+    case_control_changes(ctl, c, t->delta_t_changed, what, sizeof what);
+    printf("controlDict: %s\n", what[0] ? what : "no setting changed");
+    rt_reread(t, c);
+    *ctl = *c;
+    if (!c->run_time_modifiable)
+        printf("runTimeModifiable false: system/controlDict is no longer watched\n");
+    if (!rt_running(t))
+        printf("endTime %g is not after the current time %s: the run ends\n", t->ctl.end_time, t->name);
+    return c->run_time_modifiable;
+}
+
+static ump_status reread_control(app *a, rt_time *t, double t0, const char *tname, long step, ump_err *err)
+{
+    if (!app_control_modified(a->ctl_path, a->ctl_abs, &a->ctl_stamp, &a->ctl_missing))
         return UMP_OK;
-    a->ctl_stamp = now;
-    printf("regIOobject::readIfModified() : Re-reading object controlDict from file \"%s\"\n", a->ctl_abs);
     case_control c;
     fob_list fo;
     memset(&fo, 0, sizeof fo);
@@ -1371,17 +1404,7 @@ static ump_status reread_control(app *a, rt_time *t, double t0, const char *tnam
                "settings it has\n\n", e.msg);
         return UMP_OK;
     }
-    char what[2048];
-    case_control_changes(&a->ctl, &c, t->delta_t_changed, what, sizeof what);
-    printf("controlDict: %s\n", what[0] ? what : "no setting changed");
-    rt_reread(t, &c);
-    a->ctl = c;
-    if (!c.run_time_modifiable) {
-        a->ctl_watch = 0;
-        printf("runTimeModifiable false: system/controlDict is no longer watched\n");
-    }
-    if (!rt_running(t))
-        printf("endTime %g is not after the current time %s: the run ends\n", t->ctl.end_time, t->name);
+    a->ctl_watch = app_control_apply(t, &a->ctl, &c);
     /* the function objects: the new list replaces the old one (not run
      * with -noFunctionObjects, but checked) */
     if (a->opt.no_function_objects) {

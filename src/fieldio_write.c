@@ -868,15 +868,16 @@ ump_status fio_write_text(const char *dir, const char *name, const char *text, s
     return UMP_OK;
 }
 
-ump_status fio_write_uniform_dict(const char *dir, const char *location, const char *object, const char *body,
-                                  ump_err *err)
+/* <dir>/uniform/<object> opened for writing (uniform/ made), its header
+ * written (location "<location>/uniform"); path gets the file's path. */
+static ump_status uniform_open(const char *dir, const char *location, const char *object, sink **out,
+                               char path[4400], ump_err *err)
 {
-    char udir[4200], path[4400], loc[4200];
+    char udir[4200], loc[4200];
     int n1 = snprintf(udir, sizeof udir, "%s/uniform", dir);
-    int n2 = snprintf(path, sizeof path, "%s/uniform/%s", dir, object);
+    int n2 = snprintf(path, 4400, "%s/uniform/%s", dir, object);
     int n3 = snprintf(loc, sizeof loc, "%s/uniform", location ? location : "");
-    UMP_CHECK(n1 > 0 && n2 > 0 && n3 > 0 && (size_t)n1 < sizeof udir && (size_t)n2 < sizeof path &&
-                  (size_t)n3 < sizeof loc,
+    UMP_CHECK(n1 > 0 && n2 > 0 && n3 > 0 && (size_t)n1 < sizeof udir && n2 < 4400 && (size_t)n3 < sizeof loc,
               err, UMP_ERR_INPUT, "%s: path too long", dir);
     UMP_CALL(fio_mkdir_p(udir, err));
     sink *s = malloc(sizeof *s);
@@ -888,15 +889,33 @@ ump_status fio_write_uniform_dict(const char *dir, const char *location, const c
         return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot open for writing: %s", path, strerror(e));
     }
     put_header(s, "dictionary", location ? loc : NULL, object, 0);
-    sink_puts(s, body);
+    *out = s;
+    return UMP_OK;
+}
+
+/* The footer, then close; a failed write leaves no partial file. */
+static ump_status uniform_close(sink *s, const char *path, ump_err *err)
+{
     put_footer(s);
     errno = 0;
     int bad = sink_close(s);
     int e = errno;
     free(s);
-    if (bad)
-        return UMP_FAIL(err, UMP_ERR_IO, "%s: write failed%s%s", path, e ? ": " : "", e ? strerror(e) : "");
+    if (bad) {
+        remove(path);
+        return UMP_FAIL(err, UMP_ERR_IO, "%s: write failed: %s", path, e ? strerror(e) : "short write");
+    }
     return UMP_OK;
+}
+
+ump_status fio_write_uniform_dict(const char *dir, const char *location, const char *object, const char *body,
+                                  ump_err *err)
+{
+    char path[4400];
+    sink *s;
+    UMP_CALL(uniform_open(dir, location, object, &s, path, err));
+    sink_puts(s, body);
+    return uniform_close(s, path, err);
 }
 
 ump_status fio_write_uniform_time(const char *dir, const char *location,
@@ -908,25 +927,9 @@ ump_status fio_write_uniform_time(const char *dir, const char *location,
     UMP_CHECK(dir && *dir && name, err, UMP_ERR_INPUT,
               "fio_write_uniform_time: missing argument");
     int prec = write_precision > 0 ? write_precision : 6;
-    char udir[4200], path[4200], loc[4200];
-    int n1 = snprintf(udir, sizeof udir, "%s/uniform", dir);
-    int n2 = snprintf(path, sizeof path, "%s/uniform/time", dir);
-    int n3 = snprintf(loc, sizeof loc, "%s/uniform", location ? location : "");
-    UMP_CHECK(n1 > 0 && n2 > 0 && n3 > 0 && (size_t)n1 < sizeof udir
-                  && (size_t)n2 < sizeof path && (size_t)n3 < sizeof loc,
-              err, UMP_ERR_INPUT, "%s: path too long", dir);
-    UMP_CALL(fio_mkdir_p(udir, err));
-
-    sink *s = malloc(sizeof *s);
-    if (!s)
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory", path);
-    if (sink_open(s, path, 0) != 0) {
-        int e = errno;
-        free(s);
-        return UMP_FAIL(err, UMP_ERR_IO, "%s: cannot open for writing: %s", path,
-                        strerror(e));
-    }
-    put_header(s, "dictionary", location ? loc : NULL, "time", 0);
+    char path[4400];
+    sink *s;
+    UMP_CALL(uniform_open(dir, location, "time", &s, path, err));
     /* Time::writeTimeDict: the value is a time name with 18 digits in the
      * case's timeFormat; deltaT and deltaT0 use the stream precision */
     put_key(s, 0, "value");
@@ -944,15 +947,5 @@ ump_status fio_write_uniform_time(const char *dir, const char *location,
     sink_printf(s, "%.*g;\n\n", prec, deltaT);
     put_key(s, 0, "deltaT0");
     sink_printf(s, "%.*g;\n", prec, deltaT0);
-    put_footer(s);
-    errno = 0;
-    if (sink_close(s) != 0) {
-        int e = errno;
-        free(s);
-        remove(path);
-        return UMP_FAIL(err, UMP_ERR_IO, "%s: write failed: %s", path,
-                        e ? strerror(e) : "short write");
-    }
-    free(s);
-    return UMP_OK;
+    return uniform_close(s, path, err);
 }

@@ -156,15 +156,26 @@ static void *grow(void *arr, int n, size_t size)
     return ump_realloc_array(arr, (size_t)n + 1, size);
 }
 
+/* <case>/system/controlDict read (path gets its path) and its functions
+ * dictionary (*fd NULL where there is none). */
+static ump_status read_functions(const char *case_dir, char path[4096], foam_file **file, const foam_dict **fd,
+                                 ump_err *err)
+{
+    snprintf(path, 4096, "%s/system/controlDict", case_dir);
+    *file = NULL;
+    UMP_CALL(foam_file_read(path, file, err));
+    *fd = foam_dict_sub((*file)->dict, "functions");
+    return UMP_OK;
+}
+
 ump_status fob_read(const char *case_dir, fob_list *L, ump_err *err)
 {
     memset(L, 0, sizeof *L);
     char path[4096];
-    snprintf(path, sizeof path, "%s/system/controlDict", case_dir);
-    foam_file *file = NULL;
-    UMP_CALL(foam_file_read(path, &file, err));
+    foam_file *file;
+    const foam_dict *fd;
+    UMP_CALL(read_functions(case_dir, path, &file, &fd, err));
     ump_status rc = UMP_OK;
-    const foam_dict *fd = foam_dict_sub(file->dict, "functions");
     for (size_t i = 0; fd && i < fd->n; i++) {
         const foam_entry *e = &fd->e[i];
         if (!e->dict) { /* #includeFunc and other primitive entries */
@@ -219,11 +230,10 @@ ump_status fob_names(const char *case_dir, char *buf, size_t size, ump_err *err)
     fob_list L; /* only its list of names is used */
     memset(&L, 0, sizeof L);
     char path[4096];
-    snprintf(path, sizeof path, "%s/system/controlDict", case_dir);
-    foam_file *file = NULL;
-    UMP_CALL(foam_file_read(path, &file, err));
+    foam_file *file;
+    const foam_dict *fd;
+    UMP_CALL(read_functions(case_dir, path, &file, &fd, err));
     ump_status rc = UMP_OK;
-    const foam_dict *fd = foam_dict_sub(file->dict, "functions");
     for (size_t i = 0; fd && i < fd->n && rc == UMP_OK; i++) {
         const foam_entry *e = &fd->e[i];
         const char *type = NULL;

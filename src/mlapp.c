@@ -459,19 +459,8 @@ static ump_status read_case(mlapp *a, const char *tname, ump_err *err)
  * maxCo (the particle Courant number) stays the step's bound. */
 static void reread_control(mlapp *a, rt_time *t, double t0, const char *tname)
 {
-    case_stamp now;
-    if (case_file_stamp(a->ctl_path, &now) != 0) {
-        if (!a->ctl_missing)
-            printf("--> meshlessFoam Warning: %s: cannot read (%s); the run continues with the settings it has\n",
-                   a->ctl_path, strerror(errno));
-        a->ctl_missing = 1;
+    if (!app_control_modified(a->ctl_path, a->ctl_path, &a->ctl_stamp, &a->ctl_missing))
         return;
-    }
-    a->ctl_missing = 0;
-    if (case_stamp_equal(&now, &a->ctl_stamp))
-        return;
-    a->ctl_stamp = now;
-    printf("regIOobject::readIfModified() : Re-reading object controlDict from file \"%s\"\n", a->ctl_path);
     case_control c;
     ump_err e;
     memset(&e, 0, sizeof e);
@@ -480,56 +469,9 @@ static void reread_control(mlapp *a, rt_time *t, double t0, const char *tname)
                "settings it has\n\n", e.msg);
         return;
     }
-    char what[2048];
-    case_control_changes(&a->ctl, &c, t->delta_t_changed, what, sizeof what);
-    printf("controlDict: %s\n", what[0] ? what : "no setting changed");
-    rt_reread(t, &c);
-    t->ctl.max_co = a->ml.max_co;
-    a->ctl = c;
-    if (!c.run_time_modifiable) {
-        a->ctl_watch = 0;
-        printf("runTimeModifiable false: system/controlDict is no longer watched\n");
-    }
-    if (!rt_running(t))
-        printf("endTime %g is not after the current time %s: the run ends\n", t->ctl.end_time, t->name);
+    a->ctl_watch = app_control_apply(t, &a->ctl, &c);
+    t->ctl.max_co = a->ml.max_co; /* the particle Courant number stays the bound */
     printf("\n");
-}
-
-/* Is the start time a restart from its cloud (*restart = 1), or are the
- * particles seeded from alpha? As umppmFoam's: a time some solver wrote
- * (uniform/time) or one with the cloud's directory is a restart, whose
- * particles are part of the state, so a missing cloud is an error unless
- * -reseed (it had been seeded from alpha without a word until 2026-12-06:
- * 4.7 % more liquid in the helper's dam break). */
-static ump_status restart_policy(const mlapp *a, const char *tname, int *restart, ump_err *err)
-{
-    char dir[4400], cl[4600], path[4700], co[4700], ut[4600];
-    snprintf(dir, sizeof dir, "%s/%s", a->case_dir, tname);
-    snprintf(cl, sizeof cl, "%s/lagrangian/%s", dir, a->ml.cloud_name);
-    snprintf(path, sizeof path, "%s/positions", cl);
-    snprintf(co, sizeof co, "%s/coordinates", cl);
-    snprintf(ut, sizeof ut, "%s/uniform/time", dir);
-    struct stat st;
-    int has = foam_file_exists(path);
-    *restart = has && !a->opt.reseed;
-    if (a->opt.reseed) {
-        printf("Restart: -reseed: particles seeded from the fields of time %s%s\n\n", tname,
-               has ? " (its cloud is not read)" : "");
-        return UMP_OK;
-    }
-    if (has)
-        return UMP_OK;
-    if (foam_file_exists(co))
-        return UMP_FAIL(err, UMP_ERR_UNSUPPORTED,
-                        "%s: not found: the cloud '%s' of time %s has only 'coordinates', OpenFOAM's barycentric "
-                        "format (as mapFields and decomposePar write it), which meshlessFoam does not read; run "
-                        "with -reseed to seed new particles from alpha.%s of time %s", path, a->ml.cloud_name,
-                        tname, a->ph.name[0], tname);
-    if (stat(ut, &st) == 0 || stat(cl, &st) == 0)
-        return UMP_FAIL(err, UMP_ERR_IO, "%s: not found: the restart from time %s has no particle cloud '%s' "
-                        "(cloudName); run with -reseed to seed new particles from alpha.%s", path, tname,
-                        a->ml.cloud_name, a->ph.name[0]);
-    return UMP_OK; /* a first start (e.g. 0/): the particles are seeded */
 }
 
 /* Seeding fills the cells with alpha >= 1/2 (mlseed.h): where alpha is
@@ -585,8 +527,12 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
      * wall faces (the boundary particles), then ghosts behind the walls as
      * deep as the free-surface test reaches (docs/METHOD.md section 11). */
     double wall_depth = P->re_n * l0, thick = fmax(2 * P->re_n, P->re_lap + 0.5) * l0;
+    /* as umppmFoam's restart rule (a restart time without its cloud had
+     * been seeded from alpha without a word until 2026-12-06) */
     int restart;
-    UMP_CALL(restart_policy(a, tname, &restart, err));
+    char from[96];
+    snprintf(from, sizeof from, "alpha.%s", a->ph.name[0]);
+    UMP_CALL(app_restart_policy(a->case_dir, tname, a->ml.cloud_name, a->opt.reseed, from, &restart, err));
     if (!restart)
         UMP_CALL(check_alpha_volume(a, tname, err));
     if (is_fpm)

@@ -10,6 +10,7 @@
 #include "umppm/case.h"
 #include "umppm/mesh2d.h"
 #include "umppm/polymesh.h"
+#include "umppm/runtime.h"
 #include "umppm/ump.h"
 
 /* Command-line choices of a run. */
@@ -23,6 +24,23 @@ typedef struct app_options {
 /* Start-up recovery: the hidden directories killed runs left in case_dir
  * are recovered or removed (fio_recover), one log line each. */
 ump_status app_recover(const char *case_dir, ump_err *err);
+/* runTimeModifiable, the steps both solvers share. app_control_modified:
+ * 1 when controlDict (path; shown in the log) is another version than
+ * *stamp, which then takes the new one and the log says it is re-read; 0
+ * otherwise (a file that cannot be stat'ed is a warning, once: *missing).
+ * app_control_apply: a re-read controlDict c that passed the start-up
+ * checks goes to t and *ctl, with the log's lines; returns c's
+ * runTimeModifiable (0: stop watching). */
+int app_control_modified(const char *path, const char *shown, case_stamp *stamp, int *missing);
+int app_control_apply(rt_time *t, case_control *ctl, const case_control *c);
+/* Both solvers' restart rule: is start time tname a restart from the cloud
+ * `cloud` (*restart = 1), or are the particles seeded (a first start, or
+ * -reseed: reseed)? A time some solver wrote (uniform/time) or one with the
+ * cloud's directory but without its positions is an error naming the path
+ * and -reseed (seed_from: what seeds, for the message); a cloud in v1912's
+ * barycentric format (coordinates only) too. */
+ump_status app_restart_policy(const char *case_dir, const char *tname, const char *cloud, int reseed,
+                              const char *seed_from, int *restart, ump_err *err);
 /* The run; opt may be NULL (defaults). SIGINT/SIGTERM finish the current
  * step, write it and return UMP_OK (stopAt writeNow). */
 ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err);
