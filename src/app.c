@@ -355,10 +355,17 @@ static ump_status write_phi(app *a, const char *dir, const char *tname, const fi
     return rc;
 }
 
-static ump_status write_digest(const app *a, const char *dir, const char *tname, ump_err *err);
+/* the fields app_write_digest records: U (and T) */
+static const fld_field *const *digest_fields(const app *a, const fld_field *dig[2])
+{
+    dig[0] = a->U;
+    dig[1] = a->T;
+    return dig;
+}
 
 static ump_status write_time(app *a, const rt_time *t, ump_err *err)
 {
+    const fld_field *dig[2];
     fio_timedir td;
     fio_format fmt = {a->ctl.write_binary, a->ctl.write_precision, a->ctl.write_compression};
     fill_fields(a);
@@ -412,7 +419,8 @@ static ump_status write_time(app *a, const rt_time *t, ump_err *err)
     if ((rc = fio_write_uniform_time(td.tmp_dir, t->name, t->value, t->name, t->index, t->delta_t,
                                      t->delta_t0, a->ctl.write_precision, a->ctl.time_format_fixed,
                                      err)) != UMP_OK ||
-        (rc = write_digest(a, td.tmp_dir, t->name, err)) != UMP_OK || (rc = fio_timedir_commit(&td, err)) != UMP_OK)
+        (rc = app_write_digest(td.tmp_dir, t->name, a->um.cloud_name, a->ctl.write_binary,
+                               a->ctl.write_precision, digest_fields(a, dig), a->T ? 2 : 1, err)) != UMP_OK || (rc = fio_timedir_commit(&td, err)) != UMP_OK)
         goto fail;
     free(pos);
     free(vel);
@@ -438,13 +446,13 @@ fail:
     return rc;
 }
 
-/* The fields' digest written beside the cloud (uniform/umppmFoam): the sums
- * of each component of U (and T) over the cells and of their squares. A
+/* The fields' digest written beside the cloud (uniform/<solver>): the sums
+ * of each component of the fields over the cells and of their squares. A
  * restart compares it with the fields it reads: fields that another solver
- * (icoFoam writing into the same time directory), mapFields or setFields
- * changed after the cloud was written do not go with the particles, which
- * would continue the old run (U 20 % off, without a word, until
- * 2026-12-06). */
+ * (icoFoam or interFoam writing into the same time directory), mapFields or
+ * setFields changed after the cloud was written do not go with the
+ * particles, which would continue the old run (umppmFoam: U 20 % off,
+ * without a word, until 2026-12-06; meshlessFoam until 2026-12-07). */
 static void field_digest(const fld_field *f, double sum[3], double *sumsq)
 {
     sum[0] = sum[1] = sum[2] = *sumsq = 0;
@@ -456,25 +464,30 @@ static void field_digest(const fld_field *f, double sum[3], double *sumsq)
         }
 }
 
-static ump_status write_digest(const app *a, const char *dir, const char *tname, ump_err *err)
+ump_status app_write_digest(const char *dir, const char *tname, const char *cloud, int binary, int precision,
+                            const fld_field *const *fields, int nfields, ump_err *err)
 {
-    double su[3], qu, st[3] = {0, 0, 0}, qt = 0;
-    field_digest(a->U, su, &qu);
-    if (a->T)
-        field_digest(a->T, st, &qt);
-    char body[1024];
-    snprintf(body, sizeof body,
-             "// the fields written with the cloud: a restart from its particles checks that U (and T) are\n"
-             "// still these (sums over the cells), else it needs -reseed\n"
-             "cloudName       %s;\nwriteFormat     %s;\nwritePrecision  %d;\nnCells          %ld;\n"
-             "U_sum           (%.17g %.17g %.17g);\nU_sumSqr        %.17g;\n",
-             a->um.cloud_name, a->ctl.write_binary ? "binary" : "ascii", a->ctl.write_precision,
-             (long)a->U->ncells, su[0], su[1], su[2], qu);
-    if (a->T) {
-        size_t n = strlen(body);
-        snprintf(body + n, sizeof body - n, "T_sum           %.17g;\nT_sumSqr        %.17g;\n", st[0], qt);
+    char body[4096];
+    int n = snprintf(body, sizeof body,
+                     "// the fields written with the cloud: a restart from its particles checks that they are\n"
+                     "// still these (sums over the cells), else it needs -reseed\n"
+                     "cloudName       %s;\nwriteFormat     %s;\nwritePrecision  %d;\nnCells          %ld;\n",
+                     cloud, binary ? "binary" : "ascii", precision, nfields ? (long)fields[0]->ncells : 0L);
+    for (int q = 0; q < nfields && n > 0 && (size_t)n < sizeof body; q++) {
+        const fld_field *f = fields[q];
+        double s[3], sq;
+        field_digest(f, s, &sq);
+        if (f->ncomp == 3)
+            n += snprintf(body + n, sizeof body - (size_t)n, "%s_sum (%.17g %.17g %.17g);\n", f->name, s[0],
+                          s[1], s[2]);
+        else
+            n += snprintf(body + n, sizeof body - (size_t)n, "%s_sum %.17g;\n", f->name, s[0]);
+        if ((size_t)n < sizeof body)
+            n += snprintf(body + n, sizeof body - (size_t)n, "%s_sumSqr %.17g;\n", f->name, sq);
     }
-    return fio_write_uniform_dict(dir, tname, "umppmFoam", body, err);
+    UMP_CHECK(n > 0 && (size_t)n < sizeof body, err, UMP_ERR_INPUT, "%s/uniform/%s: cloudName or field names too long", dir,
+              ump_solver);
+    return fio_write_uniform_dict(dir, tname, ump_solver, body, err);
 }
 
 /* Round-off of a field written at writePrecision p (binary: none). */
@@ -483,66 +496,64 @@ static double digest_tol(int binary, int prec)
     return binary ? 1e-12 : 2 * pow(10, 1 - (prec > 0 ? prec : 6));
 }
 
-/* The check of write_digest's file at a restart from the cloud. */
-static ump_status check_digest(const app *a, const char *dir, const char *tname, ump_err *err)
+ump_status app_check_digest(const char *dir, const char *tname, const char *cloud, int binary, int precision,
+                            const fld_field *const *fields, int nfields, ump_err *err)
 {
     char path[4600];
-    snprintf(path, sizeof path, "%s/uniform/umppmFoam", dir);
+    snprintf(path, sizeof path, "%s/uniform/%s", dir, ump_solver);
     if (!foam_file_exists(path))
-        return UMP_OK; /* written before 2026-12-06, or not by umppmFoam */
+        return UMP_OK; /* written before the digest was, or not by this solver */
     foam_file *f = NULL;
     UMP_CALL(foam_file_read(path, &f, err));
-    const char *fmt = NULL, *cloud = NULL;
+    const char *fmt = NULL, *written_cloud = NULL;
     int64_t prec = 6, nc = 0;
-    double su[3], qu, st = 0, qt = 0;
     ump_status rc;
-    if ((rc = foam_get_word_or(f->dict, "cloudName", a->um.cloud_name, &cloud, err)) != UMP_OK ||
+    if ((rc = foam_get_word_or(f->dict, "cloudName", cloud, &written_cloud, err)) != UMP_OK ||
         (rc = foam_get_word_or(f->dict, "writeFormat", "ascii", &fmt, err)) != UMP_OK ||
         (rc = foam_get_label_or(f->dict, "writePrecision", 6, &prec, err)) != UMP_OK ||
-        (rc = foam_get_label(f->dict, "nCells", &nc, err)) != UMP_OK ||
-        (rc = foam_get_vector(f->dict, "U_sum", su, err)) != UMP_OK ||
-        (rc = foam_get_scalar(f->dict, "U_sumSqr", &qu, err)) != UMP_OK ||
-        (a->T && foam_dict_find(f->dict, "T_sum", 0) &&
-         ((rc = foam_get_scalar(f->dict, "T_sum", &st, err)) != UMP_OK ||
-          (rc = foam_get_scalar(f->dict, "T_sumSqr", &qt, err)) != UMP_OK))) {
-        foam_file_free(&f);
-        return rc;
-    }
-    int binary = strcmp(fmt, "binary") == 0;
-    if (strcmp(cloud, a->um.cloud_name) != 0) {
+        (rc = foam_get_label(f->dict, "nCells", &nc, err)) != UMP_OK)
+        goto done;
+    if (strcmp(written_cloud, cloud) != 0) {
         rc = UMP_FAIL(err, UMP_ERR_INPUT,
                       "%s/lagrangian/%s: the fields of time %s were written with the cloud '%s', not with this "
                       "one (cloudName changed?); its particles would not go with these fields; run with -reseed "
-                      "to seed new particles from the fields of time %s", dir, a->um.cloud_name, tname, cloud,
+                      "to seed new particles from the fields of time %s", dir, cloud, tname, written_cloud,
                       tname);
-        foam_file_free(&f);
-        return rc;
+        goto done;
     }
-    foam_file_free(&f);
     /* the round-off of the writes: the one recorded, or a conversion since
      * (foamFormatConvert) at this controlDict's precision */
-    double tol = fmax(digest_tol(binary, (int)prec), digest_tol(a->ctl.write_binary, a->ctl.write_precision));
-    double ru[3], rq, rt[3], rtq = 0;
-    field_digest(a->U, ru, &rq);
-    double n = (double)a->U->ncells, scale = sqrt(n * fmax(qu, rq)) + 1e-300;
-    int same = (int64_t)a->U->ncells == nc && fabs(rq - qu) <= 2 * tol * fmax(qu, rq) + 1e-300;
-    for (int k = 0; k < 3; k++)
-        same &= fabs(ru[k] - su[k]) <= tol * scale;
-    const char *which = "U";
-    double now = rq, then = qu;
-    if (same && a->T && qt > 0) {
-        field_digest(a->T, rt, &rtq);
-        same &= fabs(rt[0] - st) <= tol * sqrt(n * fmax(qt, rtq)) && fabs(rtq - qt) <= 2 * tol * fmax(qt, rtq);
-        which = "T", now = rtq, then = qt;
+    double tol = fmax(digest_tol(strcmp(fmt, "binary") == 0, (int)prec), digest_tol(binary, precision));
+    for (int q = 0; q < nfields; q++) {
+        const fld_field *F = fields[q];
+        char ks[300], kq[300];
+        snprintf(ks, sizeof ks, "%s_sum", F->name);
+        snprintf(kq, sizeof kq, "%s_sumSqr", F->name);
+        if (q > 0 && !foam_dict_find(f->dict, ks, 0))
+            continue; /* a field the writer did not record (T of an isothermal run) */
+        double s[3] = {0, 0, 0}, sq, r[3], rq;
+        if ((rc = F->ncomp == 3 ? foam_get_vector(f->dict, ks, s, err) : foam_get_scalar(f->dict, ks, s, err)) !=
+                UMP_OK ||
+            (rc = foam_get_scalar(f->dict, kq, &sq, err)) != UMP_OK)
+            goto done;
+        field_digest(F, r, &rq);
+        double n = (double)F->ncells, scale = sqrt(n * fmax(sq, rq)) + 1e-300;
+        int same = (int64_t)F->ncells == nc && fabs(rq - sq) <= 2 * tol * fmax(sq, rq) + 1e-300;
+        for (int k = 0; k < F->ncomp; k++)
+            same &= fabs(r[k] - s[k]) <= tol * scale;
+        if (!same) {
+            rc = UMP_FAIL(err, UMP_ERR_INPUT,
+                          "%s/lagrangian/%s: the fields of time %s are not those written with this particle "
+                          "cloud (another solver writing into the time directory, mapFields or setFields changed "
+                          "them: sum of %s^2 %.9g, written %.9g); its particles would continue the run that "
+                          "wrote them; run with -reseed to seed new particles from the fields of time %s", dir,
+                          cloud, tname, F->name, rq, sq, tname);
+            goto done;
+        }
     }
-    if (!same)
-        return UMP_FAIL(err, UMP_ERR_INPUT,
-                        "%s/lagrangian/%s: the fields of time %s are not those written with this particle cloud "
-                        "(another solver writing into the time directory, mapFields or setFields changed them: sum "
-                        "of %s^2 %.9g, written %.9g); its particles would continue the run that wrote them; run "
-                        "with -reseed to seed new particles from the fields of time %s", dir,
-                        a->um.cloud_name, tname, which, now, then, tname);
-    return UMP_OK;
+done:
+    foam_file_free(&f);
+    return rc;
 }
 
 /* Restart: particles of the start time's cloud replace the seeded ones. */
@@ -593,7 +604,9 @@ static ump_status restart_cloud(app *a, const char *tname, ump_err *err)
     double *pos = NULL, *vel = NULL, *xy = NULL, *T = NULL;
     int64_t *id = NULL;
     ump_idx *cell = NULL;
-    UMP_CALL(check_digest(a, dir, tname, err));
+    const fld_field *dig[2];
+    UMP_CALL(app_check_digest(dir, tname, a->um.cloud_name, a->ctl.write_binary, a->ctl.write_precision,
+                              digest_fields(a, dig), a->T ? 2 : 1, err));
     UMP_CALL(fio_read_cloud(dir, a->um.cloud_name, &n, &pos, &vel, &id, &cell, err));
     ump_status rc = UMP_OK;
     snprintf(path, sizeof path, "%s/lagrangian/%s/T", dir, a->um.cloud_name);

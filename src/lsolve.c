@@ -301,6 +301,11 @@ struct lsolve {
     double *ly;            /* [n] permuted right-hand side of the lane solves */
     double cond;           /* 1-norm condition estimate of the last factorization */
     int valid;             /* factors usable by lsolve_solve */
+    int serial;            /* lsolve_factor_serial: no lanes (a refactor allocates nothing) */
+    int *sperm;            /* [n] serial CHOLMOD: the fill-reducing order (cA = its P A P^T) */
+    ump_idx *amap;         /* [nnz(A)] serial CHOLMOD: entry of cA of each entry of A, or -1 */
+    double *sy;            /* [n] serial CHOLMOD: the permuted solution */
+    double *cw;            /* [3n] the condition estimate's vectors, kept for refactors */
 };
 
 const char *lsolve_name(const lsolve *s)
@@ -326,7 +331,12 @@ static void release_factors(lsolve *s)
         klu_free_symbolic(&s->ks, &s->kc);
     lsolve_lanes_free(&s->lanes);
     free(s->ly);
-    s->ly = NULL;
+    free(s->sperm);
+    free(s->amap);
+    free(s->sy);
+    s->ly = s->sy = NULL;
+    s->sperm = NULL;
+    s->amap = NULL;
     if (s->cholmod_started) {
         cholmod_free_factor(&s->L, &s->cc);
         cholmod_free_sparse(&s->cA, &s->cc);
@@ -349,6 +359,7 @@ void lsolve_free(lsolve **ps)
         return;
     release_factors(*ps);
     lsolve_mat_free(&(*ps)->A);
+    free((*ps)->cw);
     free(*ps);
     *ps = NULL;
 }
@@ -550,8 +561,144 @@ static void cholmod_load_values(lsolve *s)
 {
     double *x = s->cA->x;
     ump_idx nnz = s->A->Ap[s->A->n];
+    if (s->amap) {
+        for (ump_idx p = 0; p < nnz; p++)
+            if (s->amap[p] >= 0)
+                x[s->amap[p]] = s->sign * s->A->Ax[p];
+        return;
+    }
     for (ump_idx p = 0; p < nnz; p++)
         x[p] = s->sign * s->A->Ax[p];
+}
+
+/* lsolve_factor_serial with CHOLMOD. cholmod_factorize allocates a
+ * permuted copy of the matrix at every call unless the order is the
+ * natural one, and cholmod_solve2 reallocates its work between solves. So
+ * the fill-reducing order is found once (AMD, by cholmod_analyze), the
+ * matrix is stored already permuted, B = P A P^T (upper triangle, amap
+ * taking A's entries there), and analysed in its natural order; a
+ * refactor only moves values into B, and the solves with the simplicial
+ * LL' factor are the loops of serial_solve. */
+static ump_status cholmod_numeric_step(lsolve *s, ump_err *err);
+
+static ump_status cholmod_serial_setup(lsolve *s, ump_err *err)
+{
+    const lsolve_mat *A = s->A;
+    ump_idx n = A->n;
+    size_t nnz = (size_t)A->Ap[n];
+    s->cc.supernodal = CHOLMOD_SIMPLICIAL;
+    cholmod_sparse *P = cholmod_allocate_sparse((size_t)n, (size_t)n, nnz, 1, 1, 1, CHOLMOD_PATTERN, &s->cc);
+    if (!P)
+        return cholmod_status(s, "cholmod_allocate_sparse", err);
+    memcpy(P->p, A->Ap, sizeof(int) * ((size_t)n + 1));
+    memcpy(P->i, A->Ai, sizeof(int) * nnz);
+    cholmod_factor *L0 = cholmod_analyze(P, &s->cc);
+    cholmod_free_sparse(&P, &s->cc);
+    if (!L0)
+        return cholmod_status(s, "cholmod_analyze", err);
+    int *iperm = NULL, *cnt = NULL;
+    ALLOC(s->sperm, n);
+    ALLOC(s->amap, nnz + 1);
+    ALLOC(s->sy, n);
+    ALLOC(iperm, n);
+    ALLOC(cnt, (size_t)n + 1);
+    ump_status rc = UMP_OK;
+    if (!s->sperm || !s->amap || !s->sy || !iperm || !cnt) {
+        rc = UMP_FAIL(err, UMP_ERR_NOMEM, "CHOLMOD: out of memory (n = %d)", (int)n);
+        goto done;
+    }
+    memcpy(s->sperm, L0->Perm, sizeof(int) * (size_t)n);
+    for (ump_idx k = 0; k < n; k++)
+        iperm[s->sperm[k]] = (int)k;
+    /* B's columns: the entries (i, j) of A with iperm[i] <= iperm[j] */
+    for (ump_idx j = 0; j < n; j++)
+        for (ump_idx q = A->Ap[j]; q < A->Ap[j + 1]; q++)
+            if (iperm[A->Ai[q]] <= iperm[j])
+                cnt[iperm[j] + 1]++;
+    for (ump_idx k = 0; k < n; k++)
+        cnt[k + 1] += cnt[k];
+    s->cA = cholmod_allocate_sparse((size_t)n, (size_t)n, (size_t)cnt[n], 1, 1, 1, CHOLMOD_REAL, &s->cc);
+    s->B = cholmod_allocate_dense((size_t)n, 1, (size_t)n, CHOLMOD_REAL, &s->cc);
+    if (!s->cA || !s->B) {
+        rc = cholmod_status(s, "cholmod_allocate", err);
+        goto done;
+    }
+    int *Bp = s->cA->p, *Bi = s->cA->i;
+    memcpy(Bp, cnt, sizeof(int) * ((size_t)n + 1));
+    for (ump_idx j = 0; j < n; j++)
+        for (ump_idx q = A->Ap[j]; q < A->Ap[j + 1]; q++) {
+            int r = iperm[A->Ai[q]], c = iperm[j];
+            s->amap[q] = -1;
+            if (r > c)
+                continue;
+            /* insertion in row order (a column has a few tens of entries) */
+            int p = cnt[c]++;
+            while (p > Bp[c] && Bi[p - 1] > r) {
+                Bi[p] = Bi[p - 1];
+                p--;
+            }
+            Bi[p] = r;
+            s->amap[q] = p;
+        }
+    /* the insertions moved entries: amap anew from B's sorted rows */
+    for (ump_idx j = 0; j < n; j++)
+        for (ump_idx q = A->Ap[j]; q < A->Ap[j + 1]; q++) {
+            int r = iperm[A->Ai[q]], c = iperm[j];
+            if (r > c)
+                continue;
+            int lo = Bp[c], hi = Bp[c + 1] - 1;
+            while (lo < hi) {
+                int mid = (lo + hi) / 2;
+                if (Bi[mid] < r)
+                    lo = mid + 1;
+                else
+                    hi = mid;
+            }
+            s->amap[q] = lo;
+        }
+    cholmod_load_values(s);
+    s->cc.nmethods = 1;
+    s->cc.method[0].ordering = CHOLMOD_NATURAL;
+    s->cc.postorder = 0;
+    s->L = cholmod_analyze(s->cA, &s->cc);
+    if (!s->L) {
+        rc = cholmod_status(s, "cholmod_analyze", err);
+        goto done;
+    }
+    rc = cholmod_numeric_step(s, err);
+    if (rc == UMP_OK && (s->L->is_super || !s->L->is_ll))
+        rc = UMP_FAIL(err, UMP_ERR_INPUT, "CHOLMOD: expected a simplicial LL' factor (n = %d)", (int)n);
+done:
+    cholmod_free_factor(&L0, &s->cc);
+    free(iperm);
+    free(cnt);
+    return rc;
+}
+
+/* x = A^-1 b with serial_setup's factor: sign b permuted, L L^T y = that,
+ * permuted back. */
+static void serial_solve(lsolve *s, const double *b, double *x)
+{
+    const cholmod_factor *L = s->L;
+    const int *Lp = L->p, *Li = L->i, *Lnz = L->nz, *perm = s->sperm;
+    const double *Lx = L->x;
+    double *y = s->sy;
+    ump_idx n = s->A->n;
+    for (ump_idx k = 0; k < n; k++)
+        y[k] = s->sign * b[perm[k]];
+    for (ump_idx j = 0; j < n; j++) { /* L y = b: the diagonal first in each column */
+        double yj = y[j] /= Lx[Lp[j]];
+        for (int q = Lp[j] + 1; q < Lp[j] + Lnz[j]; q++)
+            y[Li[q]] -= Lx[q] * yj;
+    }
+    for (ump_idx j = n - 1; j >= 0; j--) { /* L^T x = y */
+        double t = y[j];
+        for (int q = Lp[j] + 1; q < Lp[j] + Lnz[j]; q++)
+            t -= Lx[q] * y[Li[q]];
+        y[j] = t / Lx[Lp[j]];
+    }
+    for (ump_idx k = 0; k < n; k++)
+        x[perm[k]] = y[k];
 }
 
 /* The factor made simplicial (LL', packed, diagonal first) and split into
@@ -583,7 +730,7 @@ static ump_status cholmod_numeric_step(lsolve *s, ump_err *err)
     cholmod_load_values(s);
     if (!cholmod_factorize(s->cA, s->L, &s->cc) || s->cc.status != CHOLMOD_OK)
         return cholmod_status(s, "cholmod_factorize", err);
-    return cholmod_lanes(s, err);
+    return s->serial ? UMP_OK : cholmod_lanes(s, err);
 }
 
 static ump_status cholmod_setup(lsolve *s, ump_err *err)
@@ -618,6 +765,8 @@ static ump_status cholmod_setup(lsolve *s, ump_err *err)
     s->cc.supernodal_switch = LSOLVE_SUPERNODAL_SWITCH;
     s->cc.final_ll = 1; /* LL' also for simplicial factors: a simplicial LDL' would
                            accept an indefinite matrix without pivoting */
+    if (s->serial)
+        return cholmod_serial_setup(s, err);
     size_t nnz = (size_t)A->Ap[n];
     s->cA = cholmod_allocate_sparse((size_t)n, (size_t)n, nnz, 1, 1, 1, CHOLMOD_REAL, &s->cc);
     s->B = cholmod_allocate_dense((size_t)n, 1, (size_t)n, CHOLMOD_REAL, &s->cc);
@@ -684,6 +833,10 @@ static ump_status solve_sys(lsolve *s, int trans, const double *b, double *x, um
             return klu_status(s, "klu_solve", err);
         return UMP_OK;
     case LSOLVE_CHOLMOD: {
+        if (s->amap) {
+            serial_solve(s, b, x);
+            return UMP_OK;
+        }
         if (s->lanes) { /* x = P^T L^-T L^-1 P (sign b) */
             const int *perm = s->L->Perm;
             double *y = s->ly;
@@ -722,16 +875,11 @@ static double norm1(ump_idx n, const double *x)
 static ump_status estimate_inverse_norm(lsolve *s, double *est, ump_err *err)
 {
     ump_idx n = s->A->n;
-    double *x = NULL, *y = NULL, *z = NULL;
-    ALLOC(x, n);
-    ALLOC(y, n);
-    ALLOC(z, n);
+    if (!s->cw && !ALLOC(s->cw, 3 * (size_t)n))
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory estimating the condition number",
+                        lsolve_name(s));
+    double *x = s->cw, *y = x + n, *z = y + n;
     ump_status rc = UMP_OK;
-    if (!x || !y || !z) {
-        rc = UMP_FAIL(err, UMP_ERR_NOMEM, "%s: out of memory estimating the condition number",
-                      lsolve_name(s));
-        goto done;
-    }
     *est = 0.0;
     for (ump_idx i = 0; i < n; i++)
         x[i] = 1.0 / n;
@@ -770,9 +918,6 @@ static ump_status estimate_inverse_norm(lsolve *s, double *est, ump_err *err)
     double alt = 2.0 * norm1(n, y) / (3.0 * n);
     *est = isfinite(alt) ? fmax(*est, alt) : INFINITY;
 done:
-    free(x);
-    free(y);
-    free(z);
     return rc;
 }
 
@@ -808,7 +953,7 @@ static ump_status check_condition(lsolve *s, ump_err *err)
                     lsolve_name(s), (int)A->n, s->cond, LSOLVE_COND_MAX);
 }
 
-ump_status lsolve_factor(const lsolve_mat *A, lsolve_kind kind, lsolve **out, ump_err *err)
+static ump_status factor(const lsolve_mat *A, lsolve_kind kind, int serial, lsolve **out, ump_err *err)
 {
     *out = NULL;
     UMP_CHECK(A && A->n > 0, err, UMP_ERR_INPUT, "lsolve: empty matrix");
@@ -816,6 +961,7 @@ ump_status lsolve_factor(const lsolve_mat *A, lsolve_kind kind, lsolve **out, um
               (int)A->n);
     lsolve *s = ump_alloc_array(1, sizeof *s);
     UMP_CHECK(s, err, UMP_ERR_NOMEM, "lsolve: out of memory");
+    s->serial = serial;
     ump_status rc = copy_mat(A, &s->A, err);
     if (rc == UMP_OK) {
         if (kind == LSOLVE_AUTO && auto_wants_cholmod(A)) {
@@ -837,6 +983,16 @@ ump_status lsolve_factor(const lsolve_mat *A, lsolve_kind kind, lsolve **out, um
     s->valid = 1;
     *out = s;
     return UMP_OK;
+}
+
+ump_status lsolve_factor(const lsolve_mat *A, lsolve_kind kind, lsolve **out, ump_err *err)
+{
+    return factor(A, kind, 0, out, err);
+}
+
+ump_status lsolve_factor_serial(const lsolve_mat *A, lsolve_kind kind, lsolve **out, ump_err *err)
+{
+    return factor(A, kind, 1, out, err);
 }
 
 static ump_status refactor_values(lsolve *s, ump_err *err)

@@ -533,8 +533,14 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
     char from[96];
     snprintf(from, sizeof from, "alpha.%s", a->ph.name[0]);
     UMP_CALL(app_restart_policy(a->case_dir, tname, a->ml.cloud_name, a->opt.reseed, from, &restart, err));
+    char dir[4400];
+    snprintf(dir, sizeof dir, "%s/%s", a->case_dir, tname);
+    const fld_field *dig[2] = {a->alpha, a->U};
     if (!restart)
         UMP_CALL(check_alpha_volume(a, tname, err));
+    else /* the fields read are those written with the cloud */
+        UMP_CALL(app_check_digest(dir, tname, a->ml.cloud_name, a->ctl.write_binary, a->ctl.write_precision, dig,
+                                  2, err));
     if (is_fpm)
         wall_depth = thick = (a->ml.re_s + 1) * l0;
     UMP_CALL(part_create(1024, &a->s, err));
@@ -610,8 +616,6 @@ static ump_status make_particles(mlapp *a, const char *tname, ump_err *err)
         free(sface);
     }
     /* a restart: the fluid particles of the start time's cloud */
-    char dir[4400];
-    snprintf(dir, sizeof dir, "%s/%s", a->case_dir, tname);
     if (restart) {
         size_t n;
         double *pos = NULL, *vel = NULL;
@@ -892,6 +896,12 @@ static ump_status write_time(mlapp *a, const rt_time *t, ump_err *err)
     if (rc == UMP_OK)
         rc = fio_write_uniform_time(td.tmp_dir, t->name, t->value, t->name, t->index, t->delta_t, t->delta_t0,
                                     a->ctl.write_precision, a->ctl.time_format_fixed, err);
+    /* alpha and U as written: a restart from this cloud checks them
+     * (interFoam writing into this time afterwards) */
+    const fld_field *dig[2] = {a->alpha, a->U};
+    if (rc == UMP_OK)
+        rc = app_write_digest(td.tmp_dir, t->name, a->ml.cloud_name, a->ctl.write_binary, a->ctl.write_precision,
+                              dig, 2, err);
     if (rc == UMP_OK)
         rc = fio_timedir_commit(&td, err);
     if (rc != UMP_OK)

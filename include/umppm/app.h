@@ -8,6 +8,7 @@
 #define UMPPM_APP_H
 
 #include "umppm/case.h"
+#include "umppm/field.h"
 #include "umppm/mesh2d.h"
 #include "umppm/polymesh.h"
 #include "umppm/runtime.h"
@@ -41,6 +42,20 @@ int app_control_apply(rt_time *t, case_control *ctl, const case_control *c);
  * barycentric format (coordinates only) too. */
 ump_status app_restart_policy(const char *case_dir, const char *tname, const char *cloud, int reseed,
                               const char *seed_from, int *restart, ump_err *err);
+/* The fields' digest beside a cloud, both solvers: app_write_digest writes
+ * uniform/<ump_solver> into time directory dir (location tname): cloudName,
+ * the write format and precision (binary, precision), the cells, and for
+ * each of the nfields fields the sums over the cells of its components and
+ * of their squares. app_check_digest, at a restart from the cloud: fields
+ * read from dir that differ from those sums beyond the round-off of the
+ * writes (another solver, mapFields or setFields changed them after the
+ * cloud was written), or another cloudName, are an error naming the field
+ * and -reseed. A time without the file passes (written before it existed);
+ * fields after the first that the file does not record are not checked. */
+ump_status app_write_digest(const char *dir, const char *tname, const char *cloud, int binary, int precision,
+                            const fld_field *const *fields, int nfields, ump_err *err);
+ump_status app_check_digest(const char *dir, const char *tname, const char *cloud, int binary, int precision,
+                            const fld_field *const *fields, int nfields, ump_err *err);
 /* The run; opt may be NULL (defaults). SIGINT/SIGTERM finish the current
  * step, write it and return UMP_OK (stopAt writeNow). */
 ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err);

@@ -10,9 +10,11 @@
  * P the piecewise-constant prolongation from aggregates: the unknowns in
  * squares of side H (a few particle spacings, about nine particles), so the
  * condition number is bounded by the aggregate size instead of the domain
- * size. The aggregates are numbered by their first unknown, so everything
- * is deterministic. Ac (about N/9 unknowns) is factorized with SuiteSparse
- * every build (its pattern follows the particles).
+ * size. The squares are those of a fixed lattice and every sum runs in
+ * the order of A's rows, so everything is deterministic. Ac (about N/9
+ * unknowns) is refactorized with SuiteSparse at every build, in a pattern
+ * that changes only when the liquid reaches squares it has not reached
+ * before (coarse.c): the other builds allocate nothing.
  *
  * The caller adds the coarse correction to its own one-level
  * preconditioner (additive two-level); coarse_build reports with *ok = 0
@@ -41,6 +43,10 @@ void coarse_free(coarse **c);
 ump_status coarse_build(coarse *c, size_t nu, const double *px, const double *py, const size_t *map, double H,
                         const ump_idx *rp, const ump_idx *ci, const double *av, lsolve_kind kind, int *ok,
                         ump_err *err);
+
+/* How many builds made the pattern of Ac anew (and allocated): the first,
+ * and those where the liquid reached bins it had not reached before. */
+size_t coarse_rebuilds(const coarse *c);
 
 /* z += P Ac^-1 P^T r over the nu unknowns of the last build with *ok = 1
  * (a failing solve adds nothing). */

@@ -74,6 +74,11 @@ typedef struct lsolve lsolve; /* opaque factorization */
  * numerically singular one (estimated 1-norm condition number > 1e11, e.g. a
  * pure-Neumann Laplacian that factorizes with a round-off pivot). */
 ump_status lsolve_factor(const lsolve_mat *A, lsolve_kind kind, lsolve **out, ump_err *err);
+/* The same for a small matrix refactorized every step with one pattern
+ * (the particle solves' coarse level): the solves are the library's own
+ * (CHOLMOD's without the threaded lanes), so that lsolve_refactor and
+ * lsolve_solve allocate nothing after the first call. */
+ump_status lsolve_factor_serial(const lsolve_mat *A, lsolve_kind kind, lsolve **out, ump_err *err);
 /* New numerical values, same pattern as the factorized matrix. On failure
  * the object stays allocated but lsolve_solve refuses until a refactor
  * succeeds. */

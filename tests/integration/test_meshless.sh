@@ -25,7 +25,7 @@
 #      bit for bit; 3e. OpenFOAM's damBreak by FPM through the impact on
 #      the obstacle (t = 0.25 s), its front against interFoam's;
 #      the cloud written to 17 digits; a restart without its cloud refused
-#      (-reseed seeds);
+#      (-reseed seeds), and one from a cloud whose fields were changed since;
 #   4. stopAt writeNow edited during a run (runTimeModifiable) heeded;
 #      refusals by name before the first step: a moving wall, an inflow
 #      patch, a symmetryPlane patch, a turbulence model, no constant/g,
@@ -116,6 +116,24 @@ if run_in "$c" meshlessFoam env OMP_NUM_THREADS=2 "$MESHLESSFOAM" &&
             echo "  ok   a restart without its cloud refused; -reseed seeds from alpha"
         else
             echo "  FAIL restart without cloud:"; tail -2 "$rs/log.nocloud" "$rs/log.reseed"; fail=1
+        fi
+        # the fields of a time changed after its cloud was written (interFoam
+        # or setFields writing there) are refused with its cloud, -reseed
+        # seeds from them (the old particles were continued without a word
+        # until 2026-12-07)
+        rf=$work/restartFields
+        cp -r "$work/damBreak1" "$rf"
+        foam_set "$rf" system/controlDict startFrom latestTime
+        foam_set "$rf" system/controlDict endTime 0.122
+        (cd "$rf" && foamDictionary 0.12/U -entry internalField -set "uniform (0 0 0)" > /dev/null 2>&1)
+        if (cd "$rf" && "$MESHLESSFOAM" > log.changed 2>&1); then
+            echo "  FAIL a restart from a cloud whose U was changed since ran"; fail=1
+        elif grep -q "the fields of time 0.12 are not those written with this particle cloud.*sum of U^2 0, written" \
+            "$rf/log.changed" && (cd "$rf" && "$MESHLESSFOAM" -reseed > log.reseed 2>&1) &&
+            grep -q '^End' "$rf/log.reseed"; then
+            echo "  ok   a restart from a cloud whose fields were changed since refused (U named); -reseed runs"
+        else
+            echo "  FAIL changed fields:"; tail -2 "$rf/log.changed" "$rf/log.reseed"; fail=1
         fi
     else
         fail=1
