@@ -88,6 +88,7 @@ typedef struct app {
     app_options opt;
     double u_scale;          /* divergence guard: the speed scale ... */
     double u_bound;          /* ... and the bound on |U| (maxVelocity) */
+    int closed;              /* driven by its walls alone (closed_flow) */
     /* runTimeModifiable: system/controlDict is watched while ctl_watch */
     int ctl_watch;
     int ctl_missing;         /* the last stat failed (warned once) */
@@ -723,6 +724,52 @@ static double speed_scale(const app *a)
     return scale;
 }
 
+/* A flow driven by its walls alone: no face lets fluid in or out (every
+ * patch's U is noSlip, slip, a symmetry, empty, cyclic, or a fixed value
+ * along the wall: movingWallVelocity, fixedValue with a zero normal part at
+ * every face) and no buoyancy. Its velocities stay below the walls' and
+ * the start field's largest speed, up to the overshoot of a singular
+ * corner (1.28 x the lid speed in one cell of the Re 1000 cavity on 40^2):
+ * closed_flow_factor x the speed scale is the divergence guard's default
+ * there. Found by a user trial (2026-12-06): at Re 1000 on cells of aspect
+ * ratio 2 to 5, and on graded cavities, UMPPM's velocities grew to 2-23 x
+ * the lid speed and the runs ended without a word (README, "Unbounded on
+ * coarse stretched cells at high Re"); a bound of 100 x let them. */
+#define CLOSED_FLOW_FACTOR 1.5
+
+static int closed_flow(const app *a)
+{
+    if (a->bu.on)
+        return 0;
+    const mesh2d *m = a->m;
+    const fld_field *U = a->U;
+    for (int p = 0; p < U->npatches; p++)
+        switch (U->patch[p].type) {
+        case FLD_BC_NOSLIP: case FLD_BC_SLIP: case FLD_BC_EMPTY: case FLD_BC_CYCLIC:
+        case FLD_BC_SYMMETRYPLANE: case FLD_BC_SYMMETRY: case FLD_BC_FIXEDVALUE:
+        case FLD_BC_MOVINGWALLVELOCITY:
+            break;
+        default:
+            return 0; /* inflow, outflow, or a velocity that changes in time */
+        }
+    for (ump_idx f = m->ninternal; f < m->nfaces; f++) {
+        int p = m->face_patch[f];
+        const fld_patch *fp = &U->patch[p];
+        if (fp->type != FLD_BC_FIXEDVALUE && fp->type != FLD_BC_MOVINGWALLVELOCITY)
+            continue;
+        if (!fp->value)
+            return 0;
+        ump_idx i = m->face_pm[f] - a->pm->patch[p].start;
+        if (i < 0 || i >= fp->n)
+            return 0;
+        const double *v = fp->value + 3 * (size_t)i;
+        double un = v[m->ax[0]] * m->nx[f] + v[m->ax[1]] * m->ny[f];
+        if (fabs(un) > 1e-9 * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))
+            return 0;
+    }
+    return 1;
+}
+
 /* After a step: every particle velocity finite and within a->u_bound,
  * every cell's p and T finite, and the velocity of every cell that the
  * step computed (sol_cell_u_current: every cell at the steps that compute
@@ -740,14 +787,23 @@ static ump_status check_divergence(const app *a, const char *tname, ump_err *err
     char why[160];
     if (a->um.max_velocity > 0)
         snprintf(why, sizeof why, "UMPPM maxVelocity");
+    else if (a->closed)
+        snprintf(why, sizeof why, "%g x the largest wall or start speed %g of a flow driven by its walls alone; "
+                 "UMPPM maxVelocity sets it", CLOSED_FLOW_FACTOR, a->u_scale);
     else
         snprintf(why, sizeof why, "100 x the speed scale %g; UMPPM maxVelocity sets it", a->u_scale);
+    /* a smaller step does not help on the coarse stretched cells of
+     * closed_flow's trial: there it made things worse */
+    const char *fix = a->closed && a->um.max_velocity <= 0
+                          ? "refine the mesh (coarse or stretched cells at high Re: README, \"Unbounded on coarse "
+                            "stretched cells at high Re\"), or reduce deltaT or maxCo"
+                          : "reduce deltaT or maxCo";
     for (ump_idx c = 0; c < m->ncells; c++) {
         double s2 = !cur || cur[c] ? u[c] * u[c] + v[c] * v[c] : 0.0;
         if (!(s2 <= b2))
             return UMP_FAIL(err, UMP_ERR_INPUT, "%s: the solution diverged at time %s: |U| = %g in cell %ld at "
-                            "(%g %g) exceeds the bound %g (%s); time %s is not written; reduce deltaT or maxCo",
-                            a->case_dir, tname, sqrt(s2), (long)c, m->cx[c], m->cy[c], a->u_bound, why, tname);
+                            "(%g %g) exceeds the bound %g (%s); time %s is not written; %s", a->case_dir, tname,
+                            sqrt(s2), (long)c, m->cx[c], m->cy[c], a->u_bound, why, tname, fix);
         if (!isfinite(p[c]) || (T && !isfinite(T[c])))
             return UMP_FAIL(err, UMP_ERR_INPUT, "%s: the solution diverged at time %s: %s = %g in cell %ld at "
                             "(%g %g); time %s is not written; reduce deltaT or maxCo", a->case_dir, tname,
@@ -759,9 +815,8 @@ static ump_status check_divergence(const app *a, const char *tname, ump_err *err
         double s2 = P->u[i] * P->u[i] + P->v[i] * P->v[i];
         if (!(s2 <= b2))
             return UMP_FAIL(err, UMP_ERR_INPUT, "%s: the solution diverged at time %s: |U| = %g of particle %lld "
-                            "at (%g %g) exceeds the bound %g (%s); time %s is not written; reduce deltaT or "
-                            "maxCo", a->case_dir, tname, sqrt(s2), (long long)P->id[i], P->x[i], P->y[i],
-                            a->u_bound, why, tname);
+                            "at (%g %g) exceeds the bound %g (%s); time %s is not written; %s", a->case_dir,
+                            tname, sqrt(s2), (long long)P->id[i], P->x[i], P->y[i], a->u_bound, why, tname, fix);
     }
     return UMP_OK;
 }
@@ -1541,9 +1596,12 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     if ((rc = restore_delta_t(&a, &t, tname, err)) != UMP_OK || (rc = check_planned_writes(&a, &t, err)) != UMP_OK)
         goto done;
     a.u_scale = speed_scale(&a);
-    a.u_bound = a.um.max_velocity > 0 ? a.um.max_velocity : 100 * a.u_scale;
+    a.closed = closed_flow(&a);
+    a.u_bound = a.um.max_velocity > 0 ? a.um.max_velocity : (a.closed ? CLOSED_FLOW_FACTOR : 100) * a.u_scale;
     printf("Divergence guard: |U| <= %g (%s)\n", a.u_bound,
-           a.um.max_velocity > 0 ? "UMPPM maxVelocity" : "100 x the speed scale of the start fields");
+           a.um.max_velocity > 0 ? "UMPPM maxVelocity"
+           : a.closed ? "1.5 x the largest wall or start speed: a flow driven by its walls alone"
+                      : "100 x the speed scale of the start fields");
     if (stopsig_install() != 0)
         printf("--> umppmFoam Warning: cannot install the SIGINT/SIGTERM handler: %s\n", strerror(errno));
     double co_mean, co_max;
