@@ -89,6 +89,8 @@ size_t coarse_rebuilds(const coarse *c)
     return c->rebuilds;
 }
 
+static ump_status pattern_arrays(coarse *c, size_t nb, int reach, ump_err *err);
+
 /* S, the grid and Ac's pattern anew: the old S, the bins of the nu
  * unknowns (lx, ly) and a ring around them, couplings within reach. */
 static ump_status new_pattern(coarse *c, size_t nu, int reach, ump_err *err)
@@ -120,6 +122,17 @@ static ump_status new_pattern(coarse *c, size_t nu, int reach, ump_err *err)
     c->inset = in;
     c->gx0 = x0, c->gy0 = y0, c->gnx = nx, c->gny = ny;
     c->reach = reach;
+    ump_status rc = pattern_arrays(c, nb, reach, err);
+    if (rc != UMP_OK)
+        free_pattern(c); /* gnx = 0: the next build starts again */
+    return rc;
+}
+
+/* new_pattern's arrays and Ac's pattern for S = c->inset */
+static ump_status pattern_arrays(coarse *c, size_t nb, int reach, ump_err *err)
+{
+    const unsigned char *in = c->inset;
+    long nx = c->gnx, ny = c->gny;
     GROW_TO(c->cidx, nb);
     ump_idx nc = 0;
     for (size_t b = 0; b < nb; b++)

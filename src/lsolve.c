@@ -574,7 +574,7 @@ static void cholmod_load_values(lsolve *s)
 /* lsolve_factor_serial with CHOLMOD. cholmod_factorize allocates a
  * permuted copy of the matrix at every call unless the order is the
  * natural one, and cholmod_solve2 reallocates its work between solves. So
- * the fill-reducing order is found once (AMD, by cholmod_analyze), the
+ * the fill-reducing order is found once (cholmod_analyze's choice), the
  * matrix is stored already permuted, B = P A P^T (upper triangle, amap
  * taking A's entries there), and analysed in its natural order; a
  * refactor only moves values into B, and the solves with the simplicial

@@ -474,8 +474,9 @@ static void density(mps *m)
  * prolongation from aggregates (the unknowns in squares of side 3 l0, about
  * nine particles each; coarse.h), bounds the condition number by the
  * aggregate size instead of the domain size: the iterations stop growing
- * with N. The coarse matrix is factorized by CHOLMOD every step (its
- * pattern follows the particles). Symmetric positive definite, so CG keeps
+ * with N. The coarse matrix is refactorized by CHOLMOD every step in a
+ * pattern that changes only when the liquid reaches new squares (coarse.c).
+ * Symmetric positive definite, so CG keeps
  * its guarantees; if the coarse factorization fails, the step falls back to
  * Jacobi alone (only the speed changes). */
 

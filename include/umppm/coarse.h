@@ -45,7 +45,8 @@ ump_status coarse_build(coarse *c, size_t nu, const double *px, const double *py
                         ump_err *err);
 
 /* How many builds made the pattern of Ac anew (and allocated): the first,
- * and those where the liquid reached bins it had not reached before. */
+ * those where the liquid reached squares it had not reached before, and
+ * those whose couplings reached further than any before (reach). */
 size_t coarse_rebuilds(const coarse *c);
 
 /* z += P Ac^-1 P^T r over the nu unknowns of the last build with *ok = 1

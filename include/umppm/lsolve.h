@@ -75,9 +75,10 @@ typedef struct lsolve lsolve; /* opaque factorization */
  * pure-Neumann Laplacian that factorizes with a round-off pivot). */
 ump_status lsolve_factor(const lsolve_mat *A, lsolve_kind kind, lsolve **out, ump_err *err);
 /* The same for a small matrix refactorized every step with one pattern
- * (the particle solves' coarse level): the solves are the library's own
- * (CHOLMOD's without the threaded lanes), so that lsolve_refactor and
- * lsolve_solve allocate nothing after the first call. */
+ * (the particle solves' coarse level): with CHOLMOD the matrix is kept in
+ * its fill-reducing order and solved by this module's serial loops, so
+ * that with CHOLMOD and KLU lsolve_refactor and lsolve_solve allocate
+ * nothing after the first call (UMFPACK's refactor still does). */
 ump_status lsolve_factor_serial(const lsolve_mat *A, lsolve_kind kind, lsolve **out, ump_err *err);
 /* New numerical values, same pattern as the factorized matrix. On failure
  * the object stays allocated but lsolve_solve refuses until a refactor
