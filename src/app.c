@@ -844,8 +844,9 @@ static ump_status check_divergence(const app *a, const char *tname, ump_err *err
     /* a smaller step does not help on the coarse stretched cells of
      * closed_flow's trial: there it made things worse */
     const char *fix = a->closed && a->um.max_velocity <= 0
-                          ? "refine the mesh (coarse or stretched cells at high Re: README, \"Unbounded on coarse "
-                            "stretched cells at high Re\"), or reduce deltaT or maxCo"
+                          ? "refine the mesh, or try UMPPM { variant UMPPM; anisotropicCells yes; } (coarse or "
+                            "stretched cells at high Re: README, \"Unbounded on coarse stretched cells at high "
+                            "Re\")"
                           : "reduce deltaT or maxCo";
     for (ump_idx c = 0; c < m->ncells; c++) {
         double s2 = !cur || cur[c] ? u[c] * u[c] + v[c] * v[c] : 0.0;

@@ -526,8 +526,7 @@ static const case_option umppm_options[] = {
      "buoyant: force in the predictor less its balancing pressure",
      UM_FIELD(buoyancy_balanced)},
     {"maxVelocity", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_GE(0),
-     "stop when a cell or particle |U| exceeds it; 0: 100 x the speed scale (a flow driven by its walls "
-     "alone: 1.5 x the wall speed in a cell, 3 x for a particle)",
+     "stop above this |U|; 0: 100 x the speed scale, 1.5 x if wall-driven",
      UM_FIELD(max_velocity)},
 };
 
