@@ -526,7 +526,7 @@ static const case_option umppm_options[] = {
      "buoyant: force in the predictor less its balancing pressure",
      UM_FIELD(buoyancy_balanced)},
     {"maxVelocity", CASE_OPT_SCALAR, "0", 0, NULL, NULL, UM_GE(0),
-     "stop above this |U|; 0: 100 x the speed scale, 1.5 x if wall-driven",
+     "stop above this |U|; 0: 100 x the speed scale, 2 x if wall-driven",
      UM_FIELD(max_velocity)},
 };
 
