@@ -75,7 +75,10 @@ cp -r "$top/tests/cases/cavity" "$corn"
 sed -i 's/^endTime .*/endTime 0.1;/; s/^writeInterval .*/writeInterval 20;/' "$corn/system/controlDict"
 sed -i 's/simpleGrading (1 1 1)/simpleGrading (0.001 0.001 1)/' "$corn/system/blockMeshDict"
 grep -q 'simpleGrading (0.001 0.001 1)' "$corn/system/blockMeshDict" || { echo "FAIL: could not grade the cavity"; exit 1; }
-printf 'UMPPM { anisotropicCells no; }\n' >> "$corn/system/fvSolution"
+# (maxVelocity 100, the bound of before 2026-12-06: its first step reaches
+# 6.6 x the lid speed, which the closed-flow bound of 2 x now stops; the
+# case is here for the refills, not for its answer)
+printf 'UMPPM { anisotropicCells no; maxVelocity 100; }\n' >> "$corn/system/fvSolution"
 (cd "$corn" && blockMesh > log.blockMesh 2>&1) || { echo "FAIL: blockMesh (corner)"; exit 1; }
 
 # Taylor-Green, 1600 crossed triangles, UMPPM*, 20 steps of 0.00625
