@@ -638,9 +638,8 @@ static ump_status cholmod_serial_setup(lsolve *s, ump_err *err)
                 p--;
             }
             Bi[p] = r;
-            s->amap[q] = p;
         }
-    /* the insertions moved entries: amap anew from B's sorted rows */
+    /* amap from B's sorted rows (an insertion moves the entries after it) */
     for (ump_idx j = 0; j < n; j++)
         for (ump_idx q = A->Ap[j]; q < A->Ap[j + 1]; q++) {
             int r = iperm[A->Ai[q]], c = iperm[j];

@@ -12,9 +12,8 @@
  *     pattern (no rebuild, no allocation in coarse_build and coarse_add);
  *     reaching new squares rebuilds it once.
  */
-#include "testutil.h"
+#include "testutil_lsolve.h"
 #include "umppm/coarse.h"
-#include "umppm/lsolve.h"
 
 #include <SuiteSparse_config.h>
 
@@ -42,32 +41,6 @@ static void count_on(void)
     SuiteSparse_config.realloc_func = count_realloc;
 }
 
-/* the 5-point Laplacian on an m x m grid, Dirichlet walls, times s, plus a
- * first-order convection conv in x (nonsymmetric) */
-static lsolve_mat *grid_laplacian(int m, double s, double conv)
-{
-    lsolve_trip t;
-    ump_err err;
-    lsolve_mat *A = NULL;
-    assert_int_equal(lsolve_trip_init(&t, m * m, 0, &err), UMP_OK);
-    for (int j = 0; j < m; j++)
-        for (int i = 0; i < m; i++) {
-            int r = j * m + i;
-            assert_int_equal(lsolve_trip_add(&t, r, r, s * (4 + conv), &err), UMP_OK);
-            if (i > 0)
-                assert_int_equal(lsolve_trip_add(&t, r, r - 1, s * (-1 - conv), &err), UMP_OK);
-            if (i < m - 1)
-                assert_int_equal(lsolve_trip_add(&t, r, r + 1, -s, &err), UMP_OK);
-            if (j > 0)
-                assert_int_equal(lsolve_trip_add(&t, r, r - m, -s, &err), UMP_OK);
-            if (j < m - 1)
-                assert_int_equal(lsolve_trip_add(&t, r, r + m, -s, &err), UMP_OK);
-        }
-    assert_int_equal(lsolve_trip_to_mat(&t, &A, &err), UMP_OK);
-    lsolve_trip_free(&t);
-    return A;
-}
-
 static void test_serial_factor(void **state)
 {
     (void)state;
@@ -81,8 +54,8 @@ static void test_serial_factor(void **state)
     for (int i = 0; i < n; i++)
         b[i] = sin(0.37 * i) + 0.1 * i / n;
     for (int c = 0; c < 3; c++) {
-        lsolve_mat *A = grid_laplacian(m, cases[c].s, cases[c].conv);
-        lsolve_mat *A2 = grid_laplacian(m, cases[c].s, cases[c].conv);
+        lsolve_mat *A = tu_grid_laplacian(m, cases[c].s, cases[c].conv);
+        lsolve_mat *A2 = tu_grid_laplacian(m, cases[c].s, cases[c].conv);
         for (ump_idx j = 0; j < n; j++) /* other values, the same pattern, still diagonally dominant */
             for (ump_idx p = A2->Ap[j]; p < A2->Ap[j + 1]; p++)
                 A2->Ax[p] *= A2->Ai[p] == j ? 1.25 : 1 + 0.2 * sin(0.1 * p);

@@ -4,8 +4,7 @@
  * BiCGSTAB with each preconditioner, and a differential test (random sparse
  * matrices, direct vs iterative).
  */
-#include "testutil.h"
-#include "umppm/lsolve.h"
+#include "testutil_lsolve.h"
 
 #include <omp.h>
 
@@ -39,32 +38,6 @@ static lsolve_mat *from_dense(int n, const double *d)
         for (int j = 0; j < n; j++)
             if (d[i * n + j] != 0.0)
                 assert_int_equal(lsolve_trip_add(&t, i, j, d[i * n + j], &err), UMP_OK);
-    lsolve_mat *A = from_trip(&t);
-    lsolve_trip_free(&t);
-    return A;
-}
-
-/* 5-point Laplacian on an m x m grid with Dirichlet walls, scaled by s
- * (s = 1: SPD, s = -1: negative definite, as the PPE). Optional extra
- * first-order convection cx (nonsymmetric, still diagonally dominant). */
-static lsolve_mat *laplacian(int m, double s, double conv)
-{
-    lsolve_trip t;
-    ump_err err;
-    assert_int_equal(lsolve_trip_init(&t, m * m, 5 * (size_t)m * m, &err), UMP_OK);
-    for (int j = 0; j < m; j++)
-        for (int i = 0; i < m; i++) {
-            int r = j * m + i;
-            assert_int_equal(lsolve_trip_add(&t, r, r, s * (4 + conv), &err), UMP_OK);
-            if (i > 0)
-                assert_int_equal(lsolve_trip_add(&t, r, r - 1, s * (-1 - conv), &err), UMP_OK);
-            if (i < m - 1)
-                assert_int_equal(lsolve_trip_add(&t, r, r + 1, -s, &err), UMP_OK);
-            if (j > 0)
-                assert_int_equal(lsolve_trip_add(&t, r, r - m, -s, &err), UMP_OK);
-            if (j < m - 1)
-                assert_int_equal(lsolve_trip_add(&t, r, r + m, -s, &err), UMP_OK);
-        }
     lsolve_mat *A = from_trip(&t);
     lsolve_trip_free(&t);
     return A;
@@ -248,7 +221,7 @@ static void test_direct_agree(void **state)
     for (int i = 0; i < n; i++)
         b[i] = rnd(&r) - 0.5;
     for (double s = 1; s >= -1; s -= 2) {
-        lsolve_mat *A = laplacian(m, s, 0.0);
+        lsolve_mat *A = tu_grid_laplacian(m, s, 0.0);
         lsolve_kind all[] = {LSOLVE_UMFPACK, LSOLVE_KLU, LSOLVE_CHOLMOD};
         for (int k = 0; k < 3; k++) {
             x[k] = malloc(sizeof(double) * n);
@@ -280,7 +253,7 @@ static void test_cholmod_lanes(void **state)
     rng r = {777};
     for (int i = 0; i < n; i++)
         b[i] = rnd(&r) - 0.5;
-    lsolve_mat *A = laplacian(m, -1, 0.0);
+    lsolve_mat *A = tu_grid_laplacian(m, -1, 0.0);
     lsolve *s = NULL;
     ump_err err;
     assert_int_equal(lsolve_factor(A, LSOLVE_CHOLMOD, &s, &err), UMP_OK);
@@ -363,7 +336,7 @@ static void test_mult_sym(void **state)
 {
     (void)state;
     int m = 90, n = m * m;
-    lsolve_mat *A = laplacian(m, -1, 0.0);
+    lsolve_mat *A = tu_grid_laplacian(m, -1, 0.0);
     rng r = {4242};
     for (ump_idx j = 0; j < A->n; j++)
         for (ump_idx p = A->Ap[j]; p < A->Ap[j + 1]; p++) {
@@ -401,11 +374,11 @@ static void test_refactor(void **state)
 {
     (void)state;
     int m = 12, n = m * m;
-    lsolve_mat *A = laplacian(m, -1, 0.0);
-    lsolve_mat *A2 = laplacian(m, -1, 0.0);
+    lsolve_mat *A = tu_grid_laplacian(m, -1, 0.0);
+    lsolve_mat *A2 = tu_grid_laplacian(m, -1, 0.0);
     for (ump_idx p = 0; p < A2->Ap[n]; p++)
         A2->Ax[p] *= 2.5;            /* still negative definite */
-    lsolve_mat *B = laplacian(m + 1, -1, 0.0);
+    lsolve_mat *B = tu_grid_laplacian(m + 1, -1, 0.0);
     double *b = malloc(sizeof(double) * n), *x = malloc(sizeof(double) * n),
            *y = malloc(sizeof(double) * n);
     for (int i = 0; i < n; i++)
@@ -632,14 +605,14 @@ static void test_bicgstab(void **state)
     (void)state;
     /* nonsymmetric, diagonally dominant (upwind convection-diffusion), rows
      * scaled by 1..100 so that Jacobi has something to do */
-    lsolve_mat *A = laplacian(40, 1, 2.0);
+    lsolve_mat *A = tu_grid_laplacian(40, 1, 2.0);
     for (ump_idx p = 0; p < A->Ap[A->n]; p++)
         A->Ax[p] *= pow(10.0, (A->Ai[p] % 5) / 2.0);
     int lim1[] = {1000, 300, 100};
     bicgstab_case(A, "convection-diffusion", lim1);
     lsolve_mat_free(&A);
     /* negative definite 2-D Laplacian */
-    A = laplacian(40, -1, 0.0);
+    A = tu_grid_laplacian(40, -1, 0.0);
     int lim2[] = {400, 400, 150};
     bicgstab_case(A, "Laplacian", lim2);
     lsolve_mat_free(&A);
