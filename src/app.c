@@ -1771,8 +1771,9 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
                        "speed %g of this flow driven by its walls alone (above %g x): beyond one cell at a "
                        "moving wall's corner, velocities faster than the walls are those of a flow the mesh does "
                        "not resolve (coarse or stretched cells at high Re: README, \"Unbounded on coarse "
-                       "stretched cells at high Re\"); the steps above %g x and the largest are counted at the "
-                       "end of the run\n\n", umax, (long)cmax, a.m->cx[cmax], a.m->cy[cmax], umax / a.u_scale,
+                       "stretched cells at high Re\"); refine the mesh, or try UMPPM { variant UMPPM; "
+                       "anisotropicCells yes; }; the steps above %g x and the largest are counted at the end of "
+                       "the run\n\n", umax, (long)cmax, a.m->cx[cmax], a.m->cy[cmax], umax / a.u_scale,
                        a.u_scale, CLOSED_WARN_FACTOR, CLOSED_WARN_FACTOR);
             if (umax > fast_peak) {
                 fast_peak = umax;
