@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # bench/closedFlowSweep.sh [-umppm "key value; ..."] [-icoFoam yes] [-only REGEX] [-work DIR]
 # Boundedness of lid-driven cavities on non-square, graded and coarse
-# cells (README "Unbounded on coarse stretched cells at high Re"): the
+# cells (README "Unbounded on coarse stretched cells at high Re"): 19
 # cases of the user trial of 2026-12-06 that the tests do not run, on
 # OpenFOAM's icoFoam cavity (blockMesh, lid speed 1). Re 1000 (unit
 # cavity, nu 0.001, to t = 10): uniform cells of aspect ratio 2 to 5, and
@@ -11,7 +11,7 @@
 # and graded in one direction. Prints per case umppmFoam's largest cell and
 # particle |U| over the writes, its exit (the closed-flow guard stops above
 # 2 x the lid speed), the largest |U| of its end-of-run warning (above
-# 1.05 x), and with -icoFoam yes icoFoam's largest cell |U| on the same mesh
+# 1.05 x; of its first warning, marked "(first)", when it stopped), and with -icoFoam yes icoFoam's largest cell |U| on the same mesh
 # and step. -umppm adds entries to the UMPPM dictionary of every case
 # (e.g. "variant UMPPM; anisotropicCells yes;"); -only runs the cases whose
 # name matches REGEX. About 5 minutes on one core (10 with icoFoam).
@@ -19,6 +19,7 @@ set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 extra="" ico=no only=. work=""
 while [ $# -gt 0 ]; do
+    [ $# -ge 2 ] || { echo "option $1 needs a value" >&2; exit 1; }
     case $1 in
     -umppm) extra=$2 ;; -icoFoam) ico=$2 ;; -only) only=$2 ;; -work) work=$2 ;;
     *) echo "unknown option $1" >&2; exit 1 ;;
@@ -72,7 +73,7 @@ max_particles() {
              END { printf "%.4f\n", m }' "$f"
     done | sort -g | tail -1
 }
-printf "%-18s %5s %-9s %8s %9s %-22s %9s %8s\n" case Re deltaT "cell U" "particle" "umppmFoam" "warned" icoFoam
+printf "%-18s %5s %-9s %8s %9s %-22s %16s %8s\n" case Re deltaT "cell U" "particle" "umppmFoam" "warned" icoFoam
 while IFS='|' read -r name nx ny g dt et wi nu sc; do
     [[ $name =~ $only ]] || continue
     c=$work/$name
@@ -89,16 +90,21 @@ while IFS='|' read -r name nx ny g dt et wi nu sc; do
     [ -z "$extra" ] || printf 'UMPPM { %s }\n' "$extra" >> "$c/system/fvSolution"
     status="ran to the end"
     if ! "$bin/umppmFoam" -case "$c" > "$c/log.umppmFoam" 2>&1; then
-        t=$(grep -o 'diverged at time [0-9.e+-]*' "$c/log.umppmFoam" | head -1 | awk '{ print $4 }')
+        t=$(grep -o 'diverged at time [0-9.e+-]*' "$c/log.umppmFoam" | head -1 | awk '{ print $4 }' || true)
         status="stopped at t = ${t:-?}"
+        [ -n "$t" ] || status="failed: see $c/log.umppmFoam"
     fi
-    warned=$(sed -n 's/.*above 1.05 x the walls.*; largest \([0-9.e+-]*\) (.*/\1/p' "$c/log.umppmFoam" | tail -1)
+    # the end-of-run warning's largest, or (a run stopped after warning) the first warning's |U|
+    warned=$(sed -n 's/.*|U| above [0-9.]* x the largest wall or start speed.*; largest \([0-9.e+-]*\) (.*/\1/p' \
+        "$c/log.umppmFoam" | tail -1)
+    [ -n "$warned" ] || warned=$(sed -n 's/^--> umppmFoam Warning: |U| = \([0-9.e+-]*\) in cell .*/\1 (first)/p' \
+        "$c/log.umppmFoam" | head -1)
     iu=-
     if [ "$ico" = yes ]; then
         (cd "$c/ico" && icoFoam > log.icoFoam 2>&1) && iu=$(max_cells "$c/ico") || iu=diverged
     fi
     re=$(awk -v s="$sc" -v n="$nu" 'BEGIN { printf "%g", s / n }')
-    printf "%-18s %5s %-9s %8s %9s %-22s %9s %8s\n" "$name" "$re" "$dt" "$(max_cells "$c")" \
+    printf "%-18s %5s %-9s %8s %9s %-22s %16s %8s\n" "$name" "$re" "$dt" "$(max_cells "$c")" \
         "$(max_particles "$c")" "$status" "${warned:--}" "$iu"
 done <<< "$cases"
 echo "work directory: $work"
