@@ -351,17 +351,21 @@ make_case cavity "$dw" >/dev/null 2>&1 && rm -rf "$dw/constant/polyMesh" &&
     sed -i 's/^nu .*/nu 0.001;/' "$dw/constant/transportProperties" &&
     (cd "$dw" && blockMesh > log.blockMesh 2>&1) || bad "cannot build the 20 x 5 cavity"
 setctl "$dw" deltaT 0.005
-setctl "$dw" endTime 10
+setctl "$dw" endTime 9
 setctl "$dw" writeInterval 20
+# the run passes 1.05 x at t = 8.52; then gcc's build reaches 1.955 at
+# t = 8.8, clang's -O1 sanitizer build 2.1 at t = 9.375 (stopped by the
+# guard): the path is chaotic, so the guard is lifted and the run ends at 9
+printf 'UMPPM\n{\n    maxVelocity 100;\n}\n' >> "$dw/system/fvSolution"
 ump "$dw" run
 first=$(grep -m 1 '^--> umppmFoam Warning: |U| = ' "$dw/log.run" || true)
-last=$(grep '^--> umppmFoam Warning: |U| above 1.05 x the largest wall or start speed 1 in [0-9]* of 2000 steps (checked in the cells at boundaries every step, in all cells at the write steps); largest ' "$dw/log.run" | tail -n 1 || true)
+last=$(grep '^--> umppmFoam Warning: |U| above 1.05 x the largest wall or start speed 1 in [0-9]* of 1800 steps (checked in the cells at boundaries every step, in all cells at the write steps); largest ' "$dw/log.run" | tail -n 1 || true)
 # the largest |U| of the written fields: the end line's largest is at least it
 wmax=$(for t in $(ls "$dw" | grep -E '^[0-9.]+$' | grep -vx 0); do field_values "$dw/$t/U"; done |
     awk '{ s = sqrt($1 * $1 + $2 * $2); if (s > m) m = s } END { printf "%.6g", m }')
 peak=$(printf '%s' "$last" | sed -n 's/.*; largest \([0-9.e+-]*\) (.*/\1/p')
 if [ "$rc" -eq 0 ] && [ -n "$first" ] && [ -n "$peak" ] &&
-    awk -v p="$peak" -v w="$wmax" 'BEGIN { exit !(w > 1.05 && p >= w * (1 - 1e-5) && p < 2) }'; then
+    awk -v p="$peak" -v w="$wmax" 'BEGIN { exit !(w > 1.05 && p >= w * (1 - 1e-5)) }'; then
     ok "Re 1000 on 20 x 5 cells warned (largest $peak, written fields $wmax): ${last#--> umppmFoam Warning: }"
 else
     bad "Re 1000 on 20 x 5 cells: exit $rc, written max $wmax, first '$first', last '$last'"
