@@ -10,6 +10,43 @@
 # if the tutorial is missing or its block is not the (20 20 1) this expects.
 . "$(dirname "${BASH_SOURCE[0]}")/../tutorials/RunFunctions"
 
+bench_top=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+
+# bench_options "NAME VAR ..." ARGS...: for each "-NAME VALUE" pair of ARGS
+# sets the variable VAR to VALUE; an option not in the list, or one
+# without its value, exits 1 naming the options known
+bench_options() {
+    local -a spec
+    read -r -a spec <<< "$1"
+    shift
+    local i known=""
+    for ((i = 0; i < ${#spec[@]}; i += 2)); do known+=" -${spec[i]}"; done
+    while [ $# -gt 0 ]; do
+        [ $# -ge 2 ] || { echo "option $1 needs a value (options:$known)" >&2; exit 1; }
+        for ((i = 0; i < ${#spec[@]}; i += 2)); do
+            if [ "$1" = "-${spec[i]}" ]; then
+                printf -v "${spec[i + 1]}" '%s' "$2"
+                break
+            fi
+        done
+        [ "$i" -lt ${#spec[@]} ] || { echo "unknown option $1 (options:$known)" >&2; exit 1; }
+        shift 2
+    done
+}
+
+# bench_prepare TAG: builds the project; sets bin (its bin/), umppm (the
+# solver run: $UMPPMFOAM if set, e.g. another build to compare, else
+# bin/umppmFoam) and work (created; a new umppm-TAG.XXXXXX under TMPDIR
+# unless already set, by -work)
+bench_prepare() {
+    make -C "$bench_top" -s >/dev/null
+    bin=$bench_top/bin
+    umppm=${UMPPMFOAM:-$bin/umppmFoam}
+    [ -x "$umppm" ] || { echo "no solver $umppm" >&2; exit 1; }
+    work=${work:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-$1.XXXXXX")}
+    mkdir -p "$work"
+}
+
 cavity_tutorial=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam/cavity/cavity
 
 # cavity_copy DIR: the cavity tutorial as it is (scale 0.1, nu 0.01, lid

@@ -15,23 +15,13 @@
 # and step. -umppm adds entries to the UMPPM dictionary of every case
 # (e.g. "variant UMPPM; anisotropicCells yes;"); -only runs the cases whose
 # name matches REGEX. About 5 minutes on one core (10 with icoFoam).
+# UMPPMFOAM=PATH runs that solver instead of bin/umppmFoam (another build).
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 extra="" ico=no only=. work=""
-while [ $# -gt 0 ]; do
-    [ $# -ge 2 ] || { echo "option $1 needs a value" >&2; exit 1; }
-    case $1 in
-    -umppm) extra=$2 ;; -icoFoam) ico=$2 ;; -only) only=$2 ;; -work) work=$2 ;;
-    *) echo "unknown option $1" >&2; exit 1 ;;
-    esac
-    shift 2
-done
-make -C "$top" -s >/dev/null
-bin=$top/bin
-. "$top/bench/cases.sh" # cavity_copy, max_speed
-export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
-work=${work:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-closed.XXXXXX")}
-mkdir -p "$work"
+. "$top/bench/cases.sh" # bench_options, bench_prepare, cavity_copy, max_speed
+bench_options "umppm extra icoFoam ico only only work work" "$@"
+bench_prepare closed
 all() { # two-sided grading R toward both walls, in x and in y
     local r=$1 ir
     ir=$(awk -v r="$1" 'BEGIN { printf "%.9g", 1 / r }')
@@ -89,7 +79,7 @@ while IFS='|' read -r name nx ny g dt et wi nu sc; do
     fi
     [ -z "$extra" ] || printf 'UMPPM { %s }\n' "$extra" >> "$c/system/fvSolution"
     status="ran to the end"
-    if ! "$bin/umppmFoam" -case "$c" > "$c/log.umppmFoam" 2>&1; then
+    if ! "$umppm" -case "$c" > "$c/log.umppmFoam" 2>&1; then
         t=$(grep -o 'diverged at time [0-9.e+-]*' "$c/log.umppmFoam" | head -1 | awk '{ print $4 }' || true)
         status="stopped at t = ${t:-?}"
         [ -n "$t" ] || status="failed: see $c/log.umppmFoam"

@@ -14,21 +14,13 @@
 #   G  aspect  solver  max|U|  U_vs_converged  U_vs_icoFoam  CPU_s  us/particle-step  RSS_MiB
 # (U: relative L2, area-weighted, foamCompare; CPU s from the solver's
 # ExecutionTime; RSS from bench/run_measured.py).
+# UMPPMFOAM=PATH runs that solver instead of bin/umppmFoam (another build).
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 gradings="1000 10000 100000" fine=0 extra="" work=""
-while [ $# -gt 0 ]; do
-    case $1 in
-    -gradings) gradings=$2 ;; -fine) fine=$2 ;; -umppm) extra=$2 ;; -work) work=$2 ;;
-    *) echo "unknown option $1" >&2; exit 1 ;;
-    esac
-    shift 2
-done
-make -C "$top" -s >/dev/null
-bin=$top/bin
-. "$top/bench/cases.sh"  # cavity_copy, max_speed
-work=${work:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-graded.XXXXXX")}
-mkdir -p "$work"
+. "$top/bench/cases.sh" # bench_options, bench_prepare, cavity_copy, max_speed
+bench_options "gradings gradings fine fine umppm extra work work" "$@"
+bench_prepare graded
 quiet() { "$@" > /dev/null 2>&1 || { echo "failed: $* (in $PWD)" >&2; exit 1; }; }
 tutorial() { cavity_copy "$1" || exit 1; }
 rel() { "$bin/foamCompare" "$1" 0.5 "$2" 0.5 U | awk '$1 == "U" { print $4 }'; }
@@ -62,7 +54,7 @@ for G in $gradings; do
             { echo "no stored reference for grading $G: use -fine 160" >&2; exit 1; }
     fi
     read -r _ irss _ < <(cd "$c/ico" && python3 "$top/bench/run_measured.py" -o log.icoFoam icoFoam)
-    read -r _ rss rc < <(cd "$c" && python3 "$top/bench/run_measured.py" -o log.umppmFoam "$bin/umppmFoam")
+    read -r _ rss rc < <(cd "$c" && python3 "$top/bench/run_measured.py" -o log.umppmFoam "$umppm")
     aspect=$(sed -n 's/.* is stretched \([0-9]*\):1.*/\1/p' "$c/log.umppmFoam" | head -1)
     if [ "$rc" != 0 ]; then
         printf "%7s %7s %-10s %s\n" "$G" "${aspect:--}" umppmFoam "failed: $(grep -m1 'FATAL' "$c/log.umppmFoam" | cut -c1-120)"

@@ -14,24 +14,15 @@
 # the writes (the issue's bound: 1.05 x the lid speed), with -icoFoam yes
 # icoFoam's on the same mesh and step ("diverged" when it stops early), and
 # at the end the count of meshes above 1.05.
+# UMPPMFOAM=PATH runs that solver instead of bin/umppmFoam (another build).
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 sizes="10 16 24 32 48 64" dt=0.005 ico=no extra="" work=""
 allwalls="((0.5 0.5 1000) (0.5 0.5 0.001)) ((0.5 0.5 1000) (0.5 0.5 0.001)) 1"
 gradings="1000 1 1|10000 1 1|0.001 1 1|1 0.001 1|0.001 0.001 1|1000 1000 1|$allwalls"
-while [ $# -gt 0 ]; do
-    case $1 in
-    -n) sizes=$2 ;; -gradings) gradings=$2 ;; -dt) dt=$2 ;; -icoFoam) ico=$2 ;;
-    -umppm) extra=$2 ;; -work) work=$2 ;;
-    *) echo "unknown option $1" >&2; exit 1 ;;
-    esac
-    shift 2
-done
-make -C "$top" -s >/dev/null
-bin=$top/bin
-. "$top/bench/cases.sh"  # cavity_copy, max_speed
-work=${work:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-sweep.XXXXXX")}
-mkdir -p "$work"
+. "$top/bench/cases.sh" # bench_options, bench_prepare, cavity_copy, max_speed
+bench_options "n sizes gradings gradings dt dt icoFoam ico umppm extra work work" "$@"
+bench_prepare sweep
 # max |U| over the time directories 0.* of case $1
 max_over() {
     local f
@@ -54,7 +45,7 @@ for n in $sizes; do
         if [ "$ico" = yes ]; then
             mkdir -p "$c/ico" && cp -r "$c/0" "$c/constant" "$c/system" "$c/ico/"
         fi
-        "$bin/umppmFoam" -case "$c" > "$c/log.umppmFoam" 2>&1 || { echo "umppmFoam failed in $c" >&2; exit 1; }
+        "$umppm" -case "$c" > "$c/log.umppmFoam" 2>&1 || { echo "umppmFoam failed in $c" >&2; exit 1; }
         aspect=$(awk '/is stretched/ { for (i = 1; i <= NF; i++) if ($i ~ /^[0-9.]+:1$/) { sub(/:1/, "", $i); print $i; exit } }
                       END {}' "$c/log.umppmFoam")
         um=$(max_over "$c")

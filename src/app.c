@@ -173,6 +173,24 @@ static int app_has_boundaries(const app *a) { return a->m->nfaces > a->m->ninter
 /* laplacian auto (the default): chosen by the mesh in settings() */
 static int app_laplacian_auto(const app *a) { return strcmp(a->um.laplacian, "auto") == 0; }
 
+/* anisotropicCells as this run has it: auto turns it on where a cell is
+ * stretched beyond APP_ASPECT_WARN (README, "Anisotropic cells") */
+static int app_anisotropic(const app *a)
+{
+    return a->um.anisotropic < 0 ? a->aspect > APP_ASPECT_WARN : a->um.anisotropic;
+}
+
+/* What a flow driven by its walls alone that leaves their speed is told to
+ * try: the adaptive variant with the stretched-cell operators (README,
+ * "Unbounded on coarse stretched cells at high Re"), or, to a run that
+ * already has them, the mesh alone */
+static const char *closed_remedy(const app *a)
+{
+    return !a->um.variant_star && app_anisotropic(a)
+               ? "refine the mesh (this run already has UMPPM { variant UMPPM; anisotropicCells on; })"
+               : "refine the mesh, or try UMPPM { variant UMPPM; anisotropicCells yes; }";
+}
+
 static ump_status settings(const app *a, sol_settings *s, ump_err *err)
 {
     sol_default_settings(s);
@@ -210,9 +228,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->p_theta = a->um.p_theta < 0 ? (walled ? 0 : 0.5) : a->um.p_theta;
     s->positive = a->um.positive_rows;
     s->bounded_fits = a->um.bounded_fits;
-    /* anisotropicCells auto: on where a cell is stretched beyond
-     * APP_ASPECT_WARN (README, "Anisotropic cells") */
-    s->anisotropic = a->um.anisotropic < 0 ? a->aspect > APP_ASPECT_WARN : a->um.anisotropic;
+    s->anisotropic = app_anisotropic(a);
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
     s->p_ref_value = a->so.p_ref_value;
     if (a->bu.on) {
@@ -850,11 +866,12 @@ static ump_status check_divergence(const app *a, const char *tname, double *umax
     }
     /* a smaller step does not help on the coarse stretched cells of
      * closed_flow's trial: there it made things worse */
-    const char *fix = a->closed && a->um.max_velocity <= 0
-                          ? "refine the mesh, or try UMPPM { variant UMPPM; anisotropicCells yes; } (coarse or "
-                            "stretched cells at high Re: README, \"Unbounded on coarse stretched cells at high "
-                            "Re\")"
-                          : "reduce deltaT or maxCo";
+    char fix[256];
+    if (a->closed && a->um.max_velocity <= 0)
+        snprintf(fix, sizeof fix, "%s (coarse or stretched cells at high Re: README, \"Unbounded on coarse "
+                 "stretched cells at high Re\")", closed_remedy(a));
+    else
+        snprintf(fix, sizeof fix, "reduce deltaT or maxCo");
     double top = 0;
     ump_idx ctop = 0;
     for (ump_idx c = 0; c < m->ncells; c++) {
@@ -1778,10 +1795,9 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
                        "start speed %g of this flow driven by its walls alone (above %g x): beyond one cell at a "
                        "moving wall's corner, velocities faster than the walls are those of a flow the mesh "
                        "does not resolve (coarse or stretched cells at high Re: README, \"Unbounded on coarse "
-                       "stretched cells at high Re\"); refine the mesh, or try UMPPM { variant UMPPM; "
-                       "anisotropicCells yes; }; the steps above %g x and the largest are counted at the end "
-                       "of the run\n\n", umax, (long)cmax, a.m->cx[cmax], a.m->cy[cmax], umax / a.u_scale,
-                       a.u_scale, CLOSED_WARN_FACTOR, CLOSED_WARN_FACTOR);
+                       "stretched cells at high Re\"); %s; the steps above %g x and the largest are counted at "
+                       "the end of the run\n\n", umax, (long)cmax, a.m->cx[cmax], a.m->cy[cmax], umax / a.u_scale,
+                       a.u_scale, CLOSED_WARN_FACTOR, closed_remedy(&a), CLOSED_WARN_FACTOR);
             if (umax > fast_peak) {
                 fast_peak = umax;
                 fast_cell = cmax;
