@@ -20,7 +20,10 @@
 #   - ghiaCompare -mean (the error of the time-averaged field, printed:
 #     0.0100 / 0.0100) is at most the mean of the writes' errors, over one
 #     time equals that time's errors, and equals (to 0.1 %) the errors of
-#     the field averaged here by awk over the same writes.
+#     the field averaged here by awk over the same writes;
+#   - no closed-flow |U| warning: its corner cell's overshoot (1.105 at
+#     the first warning of the binary before 2026-12-07, which fails this)
+#     is left out of it.
 # Needs UMPPMFOAM and TOOLDIR (ghiaCompare); OpenFOAM's blockMesh, icoFoam.
 set -eu -o pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -101,7 +104,7 @@ check_below "|ghiaCompare -mean u / the awk-averaged field's u - 1|" \
 check_below "|ghiaCompare -mean v / the awk-averaged field's v - 1|" \
     "$(awk -v a="$av" -v b="$fv" 'BEGIN { d = a / b - 1; print d < 0 ? -d : d }')" 0.001
 # a converged run whose one cell at the lid's downstream corner overshoots
-# (1.28 x the lid speed) is not warned of: the closed-flow warning leaves
+# (1.28 x the lid speed at its largest) is not warned of: the closed-flow warning leaves
 # out the cells at corners of walls of different velocity (it fired on
 # this case until 2026-12-07)
 if grep -q 'Warning: |U|' "$c/log.umppmFoam"; then
