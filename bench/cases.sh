@@ -42,7 +42,9 @@ bench_prepare() {
     make -C "$bench_top" -s >/dev/null
     bin=$bench_top/bin
     umppm=${UMPPMFOAM:-$bin/umppmFoam}
+    case $umppm in */*) ;; *) umppm=$(command -v "$umppm" || echo "$umppm") ;; esac
     [ -x "$umppm" ] || { echo "no solver $umppm" >&2; exit 1; }
+    umppm=$(cd "$(dirname "$umppm")" && pwd)/$(basename "$umppm") # the scripts cd into cases
     work=${work:-$(mktemp -d "${TMPDIR:-/tmp}/umppm-$1.XXXXXX")}
     mkdir -p "$work"
 }

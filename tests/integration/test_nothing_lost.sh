@@ -361,9 +361,11 @@ printf 'UMPPM\n{\n    maxVelocity 100;\n}\n' >> "$dw/system/fvSolution"
 ump "$dw" run
 first=$(grep -m 1 '^--> umppmFoam Warning: |U| = ' "$dw/log.run" || true)
 last=$(grep '^--> umppmFoam Warning: |U| above 1.05 x the largest wall or start speed 1 in [0-9]* of 1800 steps (checked in the cells at boundaries every step, in all cells at the write steps, but the corner cells); largest ' "$dw/log.run" | tail -n 1 || true)
-# the largest |U| of the written fields: the end line's largest is at least it
+# the largest |U| of the written fields but the lid's corner cells 80 and 99
+# (the warning leaves them out): the end line's largest is at least it
 wmax=$(for t in $(ls "$dw" | grep -E '^[0-9.]+$' | grep -vx 0); do field_values "$dw/$t/U"; done |
-    awk '{ s = sqrt($1 * $1 + $2 * $2); if (s > m) m = s } END { printf "%.6g", m }')
+    awk '{ k = (NR - 1) % 100 } k != 80 && k != 99 { s = sqrt($1 * $1 + $2 * $2); if (s > m) m = s }
+         END { printf "%.6g", m }')
 peak=$(printf '%s' "$last" | sed -n 's/.*; largest \([0-9.e+-]*\) (.*/\1/p')
 if [ "$rc" -eq 0 ] && [ -n "$first" ] && [ -n "$peak" ] &&
     awk -v p="$peak" -v w="$wmax" 'BEGIN { exit !(w > 1.05 && p >= w * (1 - 1e-5)) }'; then
