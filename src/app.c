@@ -805,6 +805,19 @@ static double closed_speed(const app *a, const char *tname)
     return fmax(s, a->tr.nu / mesh_extent(a->m));
 }
 
+/* The 3-vector of U's value on boundary face f where its patch is a
+ * fixedValue or movingWallVelocity with a value for that face, else NULL */
+static const double *face_value(const app *a, ump_idx f)
+{
+    const mesh2d *m = a->m;
+    int p = m->face_patch[f];
+    const fld_patch *fp = &a->U->patch[p];
+    if ((fp->type != FLD_BC_FIXEDVALUE && fp->type != FLD_BC_MOVINGWALLVELOCITY) || !fp->value)
+        return NULL;
+    ump_idx i = m->face_pm[f] - a->pm->patch[p].start;
+    return i >= 0 && i < fp->n ? fp->value + 3 * (size_t)i : NULL;
+}
+
 static int closed_flow(const app *a)
 {
     if (a->bu.on)
@@ -821,16 +834,12 @@ static int closed_flow(const app *a)
             return 0; /* inflow, outflow, or a velocity that changes in time */
         }
     for (ump_idx f = m->ninternal; f < m->nfaces; f++) {
-        int p = m->face_patch[f];
-        const fld_patch *fp = &U->patch[p];
-        if (fp->type != FLD_BC_FIXEDVALUE && fp->type != FLD_BC_MOVINGWALLVELOCITY)
+        int t = U->patch[m->face_patch[f]].type;
+        if (t != FLD_BC_FIXEDVALUE && t != FLD_BC_MOVINGWALLVELOCITY)
             continue;
-        if (!fp->value)
+        const double *v = face_value(a, f);
+        if (!v)
             return 0;
-        ump_idx i = m->face_pm[f] - a->pm->patch[p].start;
-        if (i < 0 || i >= fp->n)
-            return 0;
-        const double *v = fp->value + 3 * (size_t)i;
         double un = v[m->ax[0]] * m->nx[f] + v[m->ax[1]] * m->ny[f];
         /* (a tangential velocity on a curved wall written at 6 digits) */
         if (fabs(un) > 1e-5 * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))
@@ -844,20 +853,15 @@ static int closed_flow(const app *a)
  * cyclic) */
 static int wall_velocity(const app *a, ump_idx f, double *ux, double *uy)
 {
-    const mesh2d *m = a->m;
-    int p = m->face_patch[f];
-    const fld_patch *fp = &a->U->patch[p];
     *ux = *uy = 0;
-    if (fp->type == FLD_BC_NOSLIP)
+    if (a->U->patch[a->m->face_patch[f]].type == FLD_BC_NOSLIP)
         return 1;
-    if ((fp->type != FLD_BC_FIXEDVALUE && fp->type != FLD_BC_MOVINGWALLVELOCITY) || !fp->value)
-        return 0;
-    ump_idx i = m->face_pm[f] - a->pm->patch[p].start;
-    if (i < 0 || i >= fp->n)
-        return 0;
-    *ux = fp->value[3 * (size_t)i + m->ax[0]];
-    *uy = fp->value[3 * (size_t)i + m->ax[1]];
-    return 1;
+    const double *v = face_value(a, f);
+    if (v) {
+        *ux = v[a->m->ax[0]];
+        *uy = v[a->m->ax[1]];
+    }
+    return v != NULL;
 }
 
 /* Closed flows: a->corner[c] = 1 for the cells with a vertex where faces
@@ -873,15 +877,17 @@ static ump_status corner_cells(app *a, ump_err *err)
 {
     const mesh2d *m = a->m;
     ump_idx nv = m->nverts;
-    unsigned char *seen = calloc((size_t)nv, 1), *jump = calloc((size_t)nv, 1);
+    unsigned char *jump = calloc((size_t)nv, 1);
     double *vel = malloc(2 * (size_t)nv * sizeof *vel);
-    int *patch = malloc((size_t)nv * sizeof *patch); /* of the face that set vel */
+    int *patch = malloc((size_t)nv * sizeof *patch); /* of the face that set vel; -1: none yet */
     a->corner = calloc((size_t)m->ncells, 1);
     ump_status rc = UMP_OK;
-    if (!seen || !jump || !vel || !patch || !a->corner) {
+    if (!jump || !vel || !patch || !a->corner) {
         rc = UMP_FAIL(err, UMP_ERR_NOMEM, "out of memory for the corner cells (%ld vertices)", (long)nv);
         goto out;
     }
+    for (ump_idx v = 0; v < nv; v++)
+        patch[v] = -1;
     for (ump_idx f = m->ninternal; f < m->nfaces; f++) {
         double ux, uy;
         if (!wall_velocity(a, f, &ux, &uy))
@@ -889,8 +895,7 @@ static ump_status corner_cells(app *a, ump_err *err)
         ump_idx ends[2] = {m->vert_id[m->fv0[f]], m->vert_id[m->fv1[f]]};
         for (int k = 0; k < 2; k++) {
             ump_idx v = ends[k];
-            if (!seen[v]) {
-                seen[v] = 1;
+            if (patch[v] < 0) {
                 vel[2 * v] = ux;
                 vel[2 * v + 1] = uy;
                 patch[v] = m->face_patch[f];
@@ -904,7 +909,6 @@ static ump_status corner_cells(app *a, ump_err *err)
         for (ump_idx k = m->cell_off[c]; k < m->cell_off[c + 1]; k++)
             a->corner[c] |= jump[m->vert_id[m->cell_verts[k]]];
 out:
-    free(seen);
     free(jump);
     free(vel);
     free(patch);
