@@ -365,10 +365,23 @@ ump_status lap_cpm_neumann(const double *h, const double *k, const double *nx, c
  * algorithm (C. L. Lawson, R. J. Hanson, Solving Least Squares Problems,
  * 1974, Ch. 23); each passive-set solve is 5 x 5 by the Woodbury identity
  * (D + C^T C)^{-1} C^T b = D^{-1} C^T (I + C D^{-1} C^T)^{-1} b with D =
- * lam^2 diag(r^6). No allocation; rows with more than LAP_POS_MAX
- * neighbours are left as they are. */
+ * lam^2 diag(r^6), r_j^2 floored at LAP_POS_RMIN^2 (below). No
+ * allocation; rows with more than LAP_POS_MAX neighbours are left as they
+ * are. */
 #define LAP_POS_MAX 256
 #define LAP_POS_LAM 1e-3
+/* The penalty's distance floor, in hat units (the stencil's radius is 1).
+ * With d_j = lam^2 r_j^6 unfloored, a neighbour at 4e-4 of the radius
+ * (2e-6 from the particle whose row it is, in a cell 1.5e-5 thin: the
+ * 8 x 8 cavity graded 3 000:1 toward its walls) put entries of 4e19 beside
+ * the identity of I + C D^-1 C^T; its Cholesky factor failed, the row was
+ * left as CPM's, whose negatives cost the implicit row all diagonal
+ * dominance (2 dt nu sum max(-a_j, 0) up to 2e7), and the predictor turned
+ * velocities within [-0.4, 1] into u* = 5.2 x the lid speed in one step
+ * (README, "Positive rows that failed"). Floored at 1 % of the radius the
+ * entries stay below about 1e10 and no solve failed on those meshes; the
+ * neighbours nearer than that are equally cheap. */
+#define LAP_POS_RMIN 1e-2
 
 /* the passive-set solve: z_j = (C^T y)_j / d_j on the passive set,
  * y = (I + C_P D_P^{-1} C_P^T)^{-1} b; z_j = 0 elsewhere */
@@ -436,7 +449,8 @@ static int positive_row(const double *h, const double *k, const double *nx, cons
     for (int j = 0; j < n; j++) {
         double X = sx * h[j] * iL, Y = sy * k[j] * iL, r2 = X * X + Y * Y, nX, nY;
         p[j][0] = X, p[j][1] = Y, p[j][2] = 0.5 * X * X, p[j][3] = X * Y, p[j][4] = 0.5 * Y * Y;
-        d[j] = LAP_POS_LAM * LAP_POS_LAM * (r2 > 0 ? r2 * r2 * r2 : 1e300);
+        double r2f = fmax(r2, LAP_POS_RMIN * LAP_POS_RMIN);
+        d[j] = LAP_POS_LAM * LAP_POS_LAM * (r2 > 0 ? r2f * r2f * r2f : 1e300);
         x[j] = 0;
         pas[j] = 0;
         fre[j] = 0;
