@@ -40,15 +40,21 @@
 #     s: max |U| <= 1.05 x the lid speed at every write on 20x20 and 8x8
 #     cells graded 1000:1 toward the lid's downstream corner
 #     (simpleGrading (0.001 0.001 1)), 8x8 cells graded 10 000:1 that way,
-#     and 20x20 cells graded 1000:1 toward all four walls (two-sided
-#     simpleGrading); measured 1.000, 0.865, 1.000, 1.000 with gcc -O2 and
+#     20x20 cells graded 1000:1 toward all four walls (two-sided
+#     simpleGrading) and 8x8 cells graded 3 000:1 that way; measured 1.000,
+#     0.865, 1.000, 1.000, 0.976 with gcc -O2 and the first four also
 #     in the clang ASan build (icoFoam 0.999, 0.998, 1.000, 0.999; 1.000:
 #     a lid cell held at the lid's speed by the limit of the written U,
 #     README (f)). Before the walls in the
 #     correction (README "Graded toward the lid's downstream corner"):
 #     1.050, 1.168, 1.093, 1.068. On the 20x20 corner mesh also U within
 #     0.45 of the converged flow at t = 0.5 (measured 0.277, ASan build
-#     0.297; icoFoam 0.284);
+#     0.297; icoFoam 0.284). The 8x8 3 000:1 run stopped at t = 0.265
+#     before the positive rows' penalty floor (README, "Positive rows that
+#     failed"); so did the 10 000:1 one, at t = 0.05, which now runs to
+#     t = 0.5 but reaches 1.072 x the lid speed (not the issue's 1.05):
+#     checked that it ends and that its end-of-run warning names a largest
+#     at least the written one;
 #   - without icoFoam, written every 0.025 s: 40x40 cells graded 1000:1 in
 #     x (simpleGrading (1000 1 1)) at deltaT 0.005, and the 8x8 corner
 #     mesh at deltaT 0.00005 (10 000 steps): max |U| <= 1.05 at every
@@ -219,10 +225,17 @@ check_bounded() {
 
 # the meshes graded toward the lid's corners, each at every write
 two="(((0.5 0.5 1000) (0.5 0.5 0.001)) ((0.5 0.5 1000) (0.5 0.5 0.001)) 1)"
+# two_sided R: simpleGrading R:1 toward both walls in x and in y
+two_sided() {
+    local ir
+    ir=$(awk -v r="$1" 'BEGIN { printf "%.9g", 1 / r }')
+    echo "(((0.5 0.5 $1) (0.5 0.5 $ir)) ((0.5 0.5 $1) (0.5 0.5 $ir)) 1)"
+}
 for spec in "corner:20:(0.001 0.001 1):1000:1 toward the lid's downstream corner" \
     "corner8:8:(0.001 0.001 1):1000:1 toward the lid's downstream corner" \
     "corner8e:8:(0.0001 0.0001 1):10 000:1 toward the lid's downstream corner" \
-    "walls20:20:$two:1000:1 toward all four walls"; do
+    "walls20:20:$two:1000:1 toward all four walls" \
+    "walls8t:8:$(two_sided 3000):3 000:1 toward all four walls"; do
     IFS=: read -r name n grading what <<< "$spec"
     k=$work/$name
     label="${n}x$n graded $what"
@@ -237,6 +250,32 @@ for spec in "corner:20:(0.001 0.001 1):1000:1 toward the lid's downstream corner
         check_below "$label: U vs the converged flow (rel. L2)" "$(rel_l2 "$k" "$k/ref")" 0.45
     fi
 done
+
+# 8x8 graded 10 000:1 toward all four walls: runs to t = 0.5, and where
+# it passes 1.05 x the lid speed (1.072 at t = 0.05, the issue's bound not
+# met) it says so: the end-of-run warning's count and largest
+k=$work/walls8e
+label="8x8 graded 10 000:1 toward all four walls"
+if corner_case "$k" 8 "$(two_sided 10000)" && run_umppm "$k" "$label"; then
+    m=$(max_over "$k"/0.*)
+    echo "$label: max |U| over the writes umppmFoam $m, icoFoam $(max_over "$k/ico"/0.*)"
+    check_range "$label: writes every 0.025 s" "$(find "$k" -maxdepth 1 -name '0.*' | wc -l)" 20 20
+    check_range "$label: max |U| / lid speed over the writes" "$m" 0 2
+    warned=$(grep -o 'above 1.05 x the largest wall or start speed 1 in [0-9]* of [0-9]* steps.*largest [0-9.e+-]*' \
+        "$k/log.umppmFoam" | sed 's/.*largest //')
+    if awk -v m="$m" 'BEGIN { exit !(m > 1.05) }'; then
+        if [ -n "$warned" ] && awk -v m="$m" -v w="$warned" 'BEGIN { exit !(w >= m * (1 - 1e-6)) }'; then
+            echo "  ok   $label: above 1.05 x ($m), and the end-of-run warning says so (largest $warned)"
+        else
+            echo "  FAIL $label: max |U| $m above 1.05 x without the end-of-run warning (largest '$warned')"
+            fail=1
+        fi
+    else
+        echo "  ok   $label: max |U| $m within 1.05 x"
+    fi
+else
+    fail=1
+fi
 
 # without icoFoam (which diverges on the first at deltaT 0.005 / 10, and
 # whose step the second is not): 40x40 cells graded 1000:1 in x, the
