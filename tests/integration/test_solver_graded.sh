@@ -11,12 +11,13 @@
 #     ratios 199, 1 708 and 15 491. The default (anisotropicCells
 #     auto) turns the anisotropic operators on (the log says so); each run
 #     reaches t = 0.5 with max |U| <= 1.05 x the lid speed at each write,
-#     every 0.025 s (measured 0.724, 0.688, 0.655 with gcc -O2 since the
-#     positive rows' penalty floor of 2026-12-07, 0.727, 0.712, 0.705 before; ASan
+#     every 0.025 s (measured 0.718, 0.728, 0.725 with gcc -O2 since the
+#     positive rows' penalty floor and the refills within range of
+#     2026-12-07, 0.727, 0.712, 0.705 before; ASan
 #     0.725, 0.702, 0.673; before the walls in the correction the gcc 1 708:1 run
 #     reached 0.98), and U, the mean over the nine writes t = 0.3 ... 0.5,
 #     is within 0.40 (relative L2) of the converged flow at t = 0.5
-#     (measured 0.312, 0.285, 0.243 with gcc -O2 since the floor, 0.323,
+#     (measured 0.300, 0.307, 0.252 with gcc -O2 since 2026-12-07, 0.323,
 #     0.298, 0.252 before, 0.322, 0.272, 0.261 in the clang
 #     ASan build; before the transpose correction (f) 0.342, 0.314, 0.333 in
 #     ASan, where a single write ranged 0.30-0.42; icoFoam on the same
@@ -50,8 +51,8 @@
 #     README (f)). Before the walls in the
 #     correction (README "Graded toward the lid's downstream corner"):
 #     1.050, 1.168, 1.093, 1.068. On the 20x20 corner mesh also U within
-#     0.45 of the converged flow at t = 0.5 (measured 0.277, ASan build
-#     0.297; icoFoam 0.284). The 8x8 3 000:1 run stopped at t = 0.265
+#     0.45 of the converged flow at t = 0.5 (measured 0.266 since
+#     2026-12-07, 0.277 before, ASan build 0.297; icoFoam 0.284). The 8x8 3 000:1 run stopped at t = 0.265
 #     before the positive rows' penalty floor (README, "Positive rows that
 #     failed"); so did the 10 000:1 one, at t = 0.05, which now runs to
 #     t = 0.5 (0.995 at the writes since the refills within their samples'
@@ -61,15 +62,16 @@
 #   - without icoFoam, written every 0.025 s: 40x40 cells graded 1000:1 in
 #     x (simpleGrading (1000 1 1)) at deltaT 0.005, and the 8x8 corner
 #     mesh at deltaT 0.00005 (10 000 steps): max |U| <= 1.05 at every
-#     write (measured 0.903 and 0.999 with gcc -O2, 0.870 and 0.999 in the
+#     write (measured 1.003 and 0.999 with gcc -O2 since 2026-12-07, 0.903
+#     before, 0.870 and 0.999 in the
 #     ASan build; before the damped correction of the particles next to
 #     walls, (e) of README "Graded toward the lid's downstream corner",
 #     1.152 and 2.27);
 #   - the 8x8 meshes graded (1000 1 1) and (10000 1 1) at deltaT 0.00005
 #     (10 000 steps each): max |U| <= 1.05 at every write and U, the mean
 #     of the nine writes, within 0.40 of the converged flow (measured
-#     0.750 / 0.699, U 0.305 / 0.265 with gcc -O2 (0.716 / 0.273 before
-#     the floor); ASan 0.727 / 0.765, U
+#     0.737 / 0.737, U 0.304 / 0.333 with gcc -O2 since 2026-12-07 (0.750 /
+#     0.716, U 0.305 / 0.273 before); ASan 0.727 / 0.765, U
 #     0.317 / 0.302; before the transpose correction of the interpolation
 #     error's pressure, (f) of the same section, 1.139 / 0.974 and U 1.07
 #     / 0.77).
