@@ -511,7 +511,7 @@ static const case_option umppm_options[] = {
      "MLS weight support in cell extents; 0: Eq. 35's scales (farthest sample)",
      UM_FIELD(mls_support)},
     {"pressureTheta", CASE_OPT_SCALAR, "auto", -1, NULL, NULL, UM_AUTO_OR_0TOHALF,
-     "old pressure gradient's share at r^n; auto: 0.5 if no wall/inlet/outlet or closed triangles",
+     "old grad p share at r^n; auto: 0.5 if no boundaries or closed triangles",
      UM_FIELD(p_theta)},
     {"positiveRows", CASE_OPT_BOOL, "yes", 1, NULL, NULL, UM_NORANGE,
      "CPM rows that lose diagonal dominance made positive; no: the paper's CPM",
