@@ -1778,7 +1778,8 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
                theta_auto ? "pressureTheta auto (0.5)" : "", lap_auto && theta_auto ? "take" : "takes");
     printf("Time scheme: ddtSchemes %s; umppmFoam runs its first-order implicit UMPPM step (Eq. 14) "
            "for Euler and backward alike\n", a.ddt);
-    printf("Threads: %d (OpenMP; set OMP_NUM_THREADS to change)\n\n", sol_threads());
+    printf("Threads: %d (OpenMP; set OMP_NUM_THREADS to change; 1 where other runs share these cores: README, "
+           "\"Runs sharing the cores\")\n\n", sol_threads());
     double tb = wall_seconds();
     if (a.bu.on)
         printf("Boussinesq buoyancy: beta %g, TRef %g, Pr %g (thermal diffusivity nu/Pr = %g); "

@@ -1236,7 +1236,8 @@ ump_status mlapp_run(const char *case_dir, const mlapp_options *opt, ump_err *er
         }
     }
     printf("Set-up: %.3g s\n", wall_seconds() - tb);
-    printf("Threads: %d (OpenMP; set OMP_NUM_THREADS to change)\n\n",
+    printf("Threads: %d (OpenMP; set OMP_NUM_THREADS to change; 1 where other runs share these cores: README, "
+           "\"Runs sharing the cores\")\n\n",
 #ifdef _OPENMP
            omp_get_max_threads()
 #else
