@@ -194,15 +194,12 @@ static const char *closed_remedy(const app *a)
                : "refine the mesh, or try UMPPM { variant UMPPM; anisotropicCells yes; }";
 }
 
-static int closed_flow(const app *a);
-
-/* Most cells triangles (more than half) */
+/* Most cells triangles (more than half; the count of -checkMesh) */
 static int mostly_triangles(const mesh2d *m)
 {
-    ump_idx ntri = 0;
-    for (ump_idx c = 0; c < m->ncells; c++)
-        ntri += m->cell_off[c + 1] - m->cell_off[c] == 3;
-    return 2 * (size_t)ntri > (size_t)m->ncells;
+    mesh_stats st;
+    mesh_compute_stats(m, &st);
+    return 2 * (size_t)st.ntri > (size_t)m->ncells;
 }
 
 /* pressureTheta auto: 0.5, the trapezoidal pressure along the path, where
@@ -220,7 +217,7 @@ static int mostly_triangles(const mesh2d *m)
  * at icoFoam's step". */
 static double p_theta_auto(const app *a, int walled)
 {
-    return !walled || (closed_flow(a) && mostly_triangles(a->m)) ? 0.5 : 0;
+    return !walled || (a->closed && mostly_triangles(a->m)) ? 0.5 : 0;
 }
 
 static ump_status settings(const app *a, sol_settings *s, ump_err *err)
@@ -1748,8 +1745,10 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     if ((rc = read_start_field(&a, tname, "p", 1, a.bu.on, &a.p, err)) != UMP_OK ||
         (rc = read_start_field(&a, tname, "U", 3, 0, &a.U, err)) != UMP_OK ||
         (rc = check_reference(&a, a.bu.on ? a.prgh : a.p, a.bu.on ? "p_rgh" : "p", err)) != UMP_OK ||
-        (a.bu.on && (rc = check_prgh_walls(&a, tname, err)) != UMP_OK) ||
-        (rc = settings(&a, &s, err)) != UMP_OK)
+        (a.bu.on && (rc = check_prgh_walls(&a, tname, err)) != UMP_OK))
+        goto done;
+    a.closed = closed_flow(&a); /* for pressureTheta auto and the divergence guard */
+    if ((rc = settings(&a, &s, err)) != UMP_OK)
         goto done;
     s.t_start = t0; /* time-dependent boundary conditions without a value start here */
     if (a.fo.ignored[0])
@@ -1795,7 +1794,6 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
     rt_init(&t, &a.ctl, t0, tname);
     if ((rc = restore_delta_t(&a, &t, tname, err)) != UMP_OK || (rc = check_planned_writes(&a, &t, err)) != UMP_OK)
         goto done;
-    a.closed = closed_flow(&a);
     a.u_scale = a.closed ? closed_speed(&a, tname) : speed_scale(&a);
     if (a.closed && (rc = corner_cells(&a, err)) != UMP_OK)
         goto done;

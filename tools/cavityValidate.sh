@@ -138,20 +138,8 @@ EOF
     run "$dir/log.blockMesh" blockMesh -case "$dir"
 else
     h=$(awk -v n="$n" 'BEGIN { printf "%.6g", 1.65 / n }')
-    cat > "$dir/cavity.geo" <<EOF
-// unit cavity, Delaunay triangles of size h, one layer extruded in z
-h = $h;
-Point(1) = {0, 0, 0, h}; Point(2) = {1, 0, 0, h}; Point(3) = {1, 1, 0, h}; Point(4) = {0, 1, 0, h};
-Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
-Curve Loop(1) = {1, 2, 3, 4};
-Plane Surface(1) = {1};
-out[] = Extrude {0, 0, 0.1} { Surface{1}; Layers{1}; Recombine; };
-Physical Surface("frontAndBack") = {1, out[0]};
-Physical Surface("movingWall") = {out[4]};
-Physical Surface("fixedWalls") = {out[2], out[3], out[5]};
-Physical Volume("fluid") = {out[1]};
-EOF
-    run "$dir/log.gmsh" gmsh -3 -format msh2 "$dir/cavity.geo" -o "$dir/cavity.msh"
+    cp "$top/tools/cavityTriangles.geo" "$dir/cavity.geo"
+    run "$dir/log.gmsh" gmsh -3 -format msh2 -setnumber h "$h" "$dir/cavity.geo" -o "$dir/cavity.msh"
     run "$dir/log.gmshToFoam" gmshToFoam -case "$dir" "$dir/cavity.msh"
     for pt in "movingWall wall" "fixedWalls wall" "frontAndBack empty"; do
         set -- $pt
