@@ -90,6 +90,10 @@ typedef struct app {
     double u_bound;          /* ... and the bound on |U| (maxVelocity) */
     double u_bound_p;        /* ... and on a particle's |U| */
     int closed;              /* driven by its walls alone (closed_flow) */
+    int star;                /* the variant of this run: 1 UMPPM*, 0 UMPPM
+                                (variant auto decided once: app_variant_star) */
+    ump_idx stretched_quads; /* quadrilaterals stretched beyond
+                                APP_QUAD_SQUARE (stretched_quads, once) */
     unsigned char *corner;   /* [ncells] closed: 1 at a corner of walls of
                                 different velocity (corner_cells), or NULL */
     /* runTimeModifiable: system/controlDict is watched while ctl_watch */
@@ -189,7 +193,7 @@ static int app_anisotropic(const app *a)
  * already has them, the mesh alone */
 static const char *closed_remedy(const app *a)
 {
-    return !a->um.variant_star && app_anisotropic(a)
+    return !a->star && app_anisotropic(a)
                ? "refine the mesh (this run already has UMPPM { variant UMPPM; anisotropicCells on; })"
                : "refine the mesh, or try UMPPM { variant UMPPM; anisotropicCells yes; }";
 }
@@ -200,6 +204,51 @@ static int mostly_triangles(const mesh2d *m)
     mesh_stats st;
     mesh_compute_stats(m, &st);
     return 2 * (size_t)st.ntri > (size_t)m->ncells;
+}
+
+/* A quadrilateral is square for variant auto up to this ratio of the
+ * summed lengths of its two pairs of opposite edges (rotation does not
+ * change it; a rhombus is square by it) */
+#define APP_QUAD_SQUARE 1.15
+/* How many cells are quadrilaterals stretched beyond APP_QUAD_SQUARE */
+static ump_idx stretched_quads(const mesh2d *m)
+{
+    ump_idx n = 0;
+    for (ump_idx c = 0; c < m->ncells; c++) {
+        if (m->cell_off[c + 1] - m->cell_off[c] != 4)
+            continue;
+        const ump_idx *v = m->cell_verts + m->cell_off[c];
+        double e[4];
+        for (int k = 0; k < 4; k++)
+            e[k] = hypot(m->vx[v[(k + 1) % 4]] - m->vx[v[k]], m->vy[v[(k + 1) % 4]] - m->vy[v[k]]);
+        double a = e[0] + e[2], b = e[1] + e[3];
+        if ((a > b ? a : b) > APP_QUAD_SQUARE * (a < b ? a : b))
+            n++;
+    }
+    return n;
+}
+
+/* variant auto: the adaptive UMPPM in a flow driven by its walls alone
+ * whose cells are mostly quadrilaterals that are not square (more than
+ * half the cells stretched beyond APP_QUAD_SQUARE) and not so stretched
+ * that anisotropicCells is on; UMPPM* (one particle per cell) elsewhere.
+ * Measured on the Re 1000 cavity (README, "Non-square cells at Re 1000";
+ * RMS from Ghia, u / v, t = 40, deltaT 0.005): with UMPPM* the error grows
+ * with the cells' aspect ratio, 40 x 40 0.0158 / 0.0116, 40 x 44 (1.1:1)
+ * 0.0127 / 0.0121, 40 x 48 (1.2:1) 0.0138 / 0.0570, 40 x 80 (2:1) 0.0461 /
+ * 0.1339 (icoFoam 0.0207 / 0.0222), 20 x 40 diverged; UMPPM 0.0198 /
+ * 0.0173, 0.0198 / 0.0159, 0.0191 / 0.0168, 0.0137 / 0.0124, 0.0538 /
+ * 0.0591. The carried refills of UMPPM* put energy into the flow there
+ * (the vortex too strong at every one of Ghia's points). Triangles keep
+ * UMPPM* (with pressureTheta 0.5 it is the better one on them: README,
+ * "Triangles at icoFoam's step"); stretched beyond 20:1 the graded meshes
+ * keep the UMPPM* of their own measurements ("Anisotropic cells"); flows
+ * with inlets, outlets or buoyancy are not measured and keep UMPPM*. */
+static int app_variant_star(const app *a)
+{
+    if (a->um.variant_star >= 0)
+        return a->um.variant_star;
+    return !(a->closed && !app_anisotropic(a) && 2 * (size_t)a->stretched_quads > (size_t)a->m->ncells);
 }
 
 /* pressureTheta auto: 0.5, the trapezoidal pressure along the path, where
@@ -224,7 +273,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
 {
     sol_default_settings(s);
     s->nu = a->tr.nu;
-    s->variant = a->um.variant_star ? PART_UMPPM_STAR : PART_UMPPM;
+    s->variant = a->star ? PART_UMPPM_STAR : PART_UMPPM;
     s->alpha = a->um.alpha;
     /* laplacian auto and pressureTheta auto: the quartic row and the
      * trapezoidal pressure along the path where the mesh has no wall, inlet
@@ -249,7 +298,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     /* refill auto: carried values with UMPPM*, u_P with UMPPM, where carried
      * values from several particles grew noise on the Taylor-Green vortex
      * (README, "Refill that keeps carried values") */
-    int carried = a->um.refill_carried < 0 ? a->um.variant_star : a->um.refill_carried;
+    int carried = a->um.refill_carried < 0 ? a->star : a->um.refill_carried;
     s->refill = carried ? SOL_REFILL_CARRIED : SOL_REFILL_CENTROID;
     s->refill_k = (int)a->um.refill_k;
     s->refill_increment = a->um.refill_increment;
@@ -1747,7 +1796,9 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         (rc = check_reference(&a, a.bu.on ? a.prgh : a.p, a.bu.on ? "p_rgh" : "p", err)) != UMP_OK ||
         (a.bu.on && (rc = check_prgh_walls(&a, tname, err)) != UMP_OK))
         goto done;
-    a.closed = closed_flow(&a); /* for pressureTheta auto and the divergence guard */
+    a.closed = closed_flow(&a); /* for the autos and the divergence guard */
+    a.stretched_quads = stretched_quads(a.m);
+    a.star = app_variant_star(&a);
     if ((rc = settings(&a, &s, err)) != UMP_OK)
         goto done;
     s.t_start = t0; /* time-dependent boundary conditions without a value start here */
@@ -1755,8 +1806,9 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         printf("--> umppmFoam Warning: function objects not run by umppmFoam (ignored): %s\n\n",
                a.fo.ignored);
     int lap_auto = app_laplacian_auto(&a), theta_auto = a.um.p_theta < 0;
-    printf("UMPPM: variant %s, alpha %g, laplacian %s%s", a.um.variant_star ? "UMPPM*" : "UMPPM",
-           a.um.alpha, lap_name(s.lap.model), lap_auto ? " (auto)" : "");
+    int variant_auto = a.um.variant_star < 0;
+    printf("UMPPM: variant %s%s, alpha %g, laplacian %s%s", a.star ? "UMPPM*" : "UMPPM",
+           variant_auto ? " (auto)" : "", a.um.alpha, lap_name(s.lap.model), lap_auto ? " (auto)" : "");
     if (s.lap.model != LAP_CPM && s.lap.model != LAP_CPM4)
         printf(" (r_e = %g x spacing)", lap_re_factor(&s.lap));
     if (s.p_theta > 0)
@@ -1775,6 +1827,11 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
                "laplacian CPM and pressureTheta 0 are the paper's method\n",
                lap_auto ? "laplacian auto (CPM4)" : "", lap_auto && theta_auto ? " and " : "",
                theta_auto ? "pressureTheta auto (0.5)" : "", lap_auto && theta_auto ? "take" : "takes");
+    if (variant_auto && !a.star)
+        printf("A flow driven by its walls alone on quadrilaterals that are not square (%ld of %ld cells "
+               "stretched beyond %g:1): variant auto (UMPPM, the adaptive variant; README, \"Non-square "
+               "cells at Re 1000\"); variant UMPPMstar, one particle per cell, is the paper's UMPPM*\n",
+               (long)a.stretched_quads, (long)a.m->ncells, APP_QUAD_SQUARE);
     printf("Time scheme: ddtSchemes %s; umppmFoam runs its first-order implicit UMPPM step (Eq. 14) "
            "for Euler and backward alike\n", a.ddt);
     printf("Threads: %d (OpenMP; set OMP_NUM_THREADS to change; 1 where other runs share these cores: README, "

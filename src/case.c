@@ -445,8 +445,9 @@ ump_status case_start_dir(const char *case_dir, const case_control *c, char *nam
 
 /* ---- the UMPPM sub-dictionary of system/fvSolution ------------------------ */
 
-static const char *const variant_words[] = {"UMPPM", "UMPPMstar", "UMPPM*", NULL};
-static const int variant_values[] = {0, 1, 1};
+/* variant: auto (-1, decided by the mesh and the flow, app.c) or a variant */
+static const char *const variant_words[] = {"auto", "UMPPM", "UMPPMstar", "UMPPM*", NULL};
+static const int variant_values[] = {-1, 0, 1, 1};
 static const char *const laplacian_words[] = {"auto", "CPM", "MPS", "IPS", "PS", "CPM4", NULL};
 static const char *const ppe_words[] = {"auto", "UMFPACK", "KLU", "CHOLMOD", NULL};
 static const char *const pc_words[] = {"ILU0", "Jacobi", "none", NULL};
@@ -472,8 +473,8 @@ static const int refill_weight_values[] = {1, 0};
 #define UM_AUTO_OR_0TOHALF {1, 1, 0, 0, 0, 0.5, 0, 1}
 
 static const case_option umppm_options[] = {
-    {"variant", CASE_OPT_CHOICE, "UMPPMstar", 1, variant_words, variant_values, UM_NORANGE,
-     "UMPPM (adaptive, alpha) or UMPPMstar (one particle per cell; or \"UMPPM*\")",
+    {"variant", CASE_OPT_CHOICE, "auto", -1, variant_words, variant_values, UM_NORANGE,
+     "UMPPM (adaptive), UMPPMstar (1 per cell); auto: UMPPM on non-square quads",
      UM_FIELD(variant_star)},
     {"alpha", CASE_OPT_SCALAR, "0.09", 0.09, NULL, NULL, UM_OPEN01,
      "UMPPM: delete one of two particles closer than sqrt(alpha) d_c",

@@ -79,9 +79,10 @@ typedef struct case_solution {
  * reFactor: r_e / particle spacing of MPS, PS, IPS (0: 2.1 MPS, 2 PS/IPS);
  * writeQuality: also write the particle fields uN and tau (Hwang, Ng &
  * Sheu 2016 [HNS16] Eqs. 13, 22).
- * variant: UMPPM (adaptive) or UMPPMstar (also written "UMPPM*" in quotes). */
+ * variant: UMPPM (adaptive), UMPPMstar (also written "UMPPM*" in quotes), or
+ * auto (app.c: UMPPM in a closed flow on mostly non-square quadrilaterals). */
 typedef struct case_umppm {
-    int variant_star;            /* 1: UMPPM*, 0: UMPPM; default 1 */
+    int variant_star;            /* 1: UMPPM*, 0: UMPPM, -1: auto (the default) */
     double alpha;                /* default 0.09, in (0, 1) */
     char laplacian[16];          /* auto (default), CPM, MPS, IPS, PS, CPM4 */
     double re_factor;            /* default 0: the model's own */
@@ -168,7 +169,7 @@ size_t case_umppm_help(char *buf, size_t len);
 /* Read the UMPPM sub-dictionary of <case>/system/fvSolution (absent: all
  * defaults). Each key is read with its type and checked against its allowed
  * values; an error names file, line, key, value and what is allowed:
- *   system/fvSolution:12: UMPPM variant 'foo' is not one of: UMPPM UMPPMstar UMPPM*
+ *   system/fvSolution:12: UMPPM variant 'foo' is not one of: auto UMPPM UMPPMstar UMPPM*
  *   system/fvSolution:13: UMPPM alpha 1.5 is out of range: allowed (0, 1)
  * Keys not in the table are refused, as is a non-dictionary UMPPM or
  * predictorSolver:
