@@ -243,12 +243,14 @@ static ump_idx stretched_quads(const mesh2d *m)
  * UMPPM* (with pressureTheta 0.5 it is the better one on them: README,
  * "Triangles at icoFoam's step"); stretched beyond 20:1 the graded meshes
  * keep the UMPPM* of their own measurements ("Anisotropic cells"); flows
- * with inlets, outlets or buoyancy are not measured and keep UMPPM*. */
+ * with inlets, outlets or buoyancy, or without walls (Taylor-Green), are
+ * not measured and keep UMPPM*. */
 static int app_variant_star(const app *a)
 {
     if (a->um.variant_star >= 0)
         return a->um.variant_star;
-    return !(a->closed && !app_anisotropic(a) && 2 * (size_t)a->stretched_quads > (size_t)a->m->ncells);
+    return !(a->closed && app_has_boundaries(a) && !app_anisotropic(a) &&
+             2 * (size_t)a->stretched_quads > (size_t)a->m->ncells);
 }
 
 /* pressureTheta auto: 0.5, the trapezoidal pressure along the path, where
