@@ -37,25 +37,39 @@ ex=/usr/share/doc/openfoam-examples/examples/incompressible/icoFoam/cavity/cavit
 work=$(mktemp -d "${TMPDIR:-/tmp}/umppm-re1000.XXXXXX")
 fail=0
 
-c=$work/cavity
-tutorial_copy "$ex" "$c"
-sed -i 's/^scale .*/scale 1;/; s/(20 20 1)/(40 40 1)/' "$c/system/blockMeshDict"
-sed -i 's/^nu .*/nu              0.001;/' "$c/constant/transportProperties"
-# writes every 40 steps = 0.5 s
-sed -i 's/^deltaT .*/deltaT 0.0125;/; s/^endTime .*/endTime 40;/; s/^writeControl .*/writeControl timeStep;/;
-        s/^writeInterval .*/writeInterval 40;/' "$c/system/controlDict"
-grep -q '(40 40 1)' "$c/system/blockMeshDict" && grep -q '^scale 1;' "$c/system/blockMeshDict" &&
-    grep -q '^nu  *0.001;' "$c/constant/transportProperties" ||
-    { echo "  FAIL: could not set up the Re 1000 case"; exit 1; }
-run_in "$c" blockMesh blockMesh
-mkdir -p "$c/ico"
-cp -r "$c/0" "$c/constant" "$c/system" "$c/ico/"
-run_in "$c/ico" icoFoam icoFoam
+# re1000_case DIR DELTAT WRITEINTERVAL [NX NY]: icoFoam's cavity at Re 1000
+# (nu 0.001) in DIR, to t = 40 at DELTAT, written every WRITEINTERVAL
+# steps; with NX NY its blockMesh a unit square of NX x NY cells, meshed
+re1000_case() {
+    local d=$1 dt=$2 wi=$3
+    tutorial_copy "$ex" "$d"
+    sed -i 's/^nu .*/nu              0.001;/' "$d/constant/transportProperties"
+    sed -i "s/^deltaT .*/deltaT $dt;/; s/^endTime .*/endTime 40;/; s/^writeControl .*/writeControl timeStep;/;
+            s/^writeInterval .*/writeInterval $wi;/" "$d/system/controlDict"
+    grep -q "^writeInterval $wi;" "$d/system/controlDict" && grep -q '^nu  *0.001;' "$d/constant/transportProperties" ||
+        { echo "  FAIL: could not set up the Re 1000 case $d"; exit 1; }
+    [ $# -eq 5 ] || return 0
+    sed -i "s/^scale .*/scale 1;/; s/(20 20 1)/($4 $5 1)/" "$d/system/blockMeshDict"
+    grep -q "($4 $5 1)" "$d/system/blockMeshDict" && grep -q '^scale 1;' "$d/system/blockMeshDict" ||
+        { echo "  FAIL: could not set up the $4 x $5 mesh of $d"; exit 1; }
+    run_in "$d" blockMesh blockMesh
+}
+# run_both DIR WHAT: icoFoam on a copy of the case in DIR/ico, umppmFoam in
+# DIR (log.umppmFoam); the test stops if umppmFoam fails (WHAT names the case)
+run_both() {
+    mkdir -p "$1/ico"
+    cp -r "$1/0" "$1/constant" "$1/system" "$1/ico/"
+    run_in "$1/ico" icoFoam icoFoam
+    if ! "$UMPPMFOAM" -case "$1" > "$1/log.umppmFoam" 2>&1; then
+        echo "  FAIL umppmFoam failed$2: $(grep -m1 'FATAL' "$1/log.umppmFoam" | cut -c1-200)"
+        exit 1
+    fi
+}
 
-if ! "$UMPPMFOAM" -case "$c" > "$c/log.umppmFoam" 2>&1; then
-    echo "  FAIL umppmFoam failed: $(grep -m1 'FATAL' "$c/log.umppmFoam" | cut -c1-200)"
-    exit 1
-fi
+c=$work/cavity
+# writes every 40 steps = 0.5 s
+re1000_case "$c" 0.0125 40 40 40
+run_both "$c" ""
 # u_rms v_rms of CASE at TIME
 ghia() { "$TOOLDIR/ghiaCompare" -Re 1000 "$1" "$2" | tail -1 | awk '{ print $3, $5 }'; }
 times=$(ls "$c" | grep -E '^[0-9.]+$' | awk '$1 >= 30' | sort -g)
@@ -133,12 +147,7 @@ check_below "v RMS at t = 40 / icoFoam's" "$(awk -v a="$v40" -v b="$iv" 'BEGIN {
 # at icoFoam's step"): 0.0592 / 0.0619, v 1.13 x icoFoam's, and the check
 # fails.
 tc=$work/triangles
-tutorial_copy "$ex" "$tc"
-sed -i 's/^nu .*/nu              0.001;/' "$tc/constant/transportProperties"
-sed -i 's/^deltaT .*/deltaT 0.0125;/; s/^endTime .*/endTime 40;/; s/^writeControl .*/writeControl timeStep;/;
-        s/^writeInterval .*/writeInterval 160;/' "$tc/system/controlDict"
-grep -q '^writeInterval 160;' "$tc/system/controlDict" && grep -q '^nu  *0.001;' "$tc/constant/transportProperties" ||
-    { echo "  FAIL: could not set up the Re 1000 triangle case"; exit 1; }
+re1000_case "$tc" 0.0125 160
 cp "$top/tools/cavityTriangles.geo" "$tc/cavity.geo"
 run_in "$tc" gmsh gmsh -3 -format msh2 -setnumber h 0.04125 cavity.geo -o cavity.msh
 run_in "$tc" gmshToFoam gmshToFoam cavity.msh
@@ -147,13 +156,7 @@ for pt in "movingWall wall" "fixedWalls wall" "frontAndBack empty"; do
     foam_set "$tc" constant/polyMesh/boundary "entry0/$1/type" "$2"
 done
 ncells=$(sed -n 's/.*nCells: *\([0-9]*\).*/\1/p' "$tc/constant/polyMesh/owner" | head -n 1)
-mkdir -p "$tc/ico"
-cp -r "$tc/0" "$tc/constant" "$tc/system" "$tc/ico/"
-run_in "$tc/ico" icoFoam icoFoam
-if ! "$UMPPMFOAM" -case "$tc" > "$tc/log.umppmFoam" 2>&1; then
-    echo "  FAIL umppmFoam failed on triangles: $(grep -m1 'FATAL' "$tc/log.umppmFoam" | cut -c1-200)"
-    exit 1
-fi
+run_both "$tc" " on triangles"
 if grep -q '^UMPPM: .*pressureTheta 0.5 (auto)' "$tc/log.umppmFoam"; then
     echo "  ok   pressureTheta auto is 0.5 on the closed triangle mesh"
 else
@@ -184,21 +187,8 @@ check_below "triangles: v RMS / icoFoam's (mean over t = 30..40)" "$(awk -v a="$
 # before 2026-12-07 (README, "Non-square cells at Re 1000"): 0.0836 /
 # 0.0800 at t = 40, twice icoFoam's, and the check fails.
 qc=$work/quads
-tutorial_copy "$ex" "$qc"
-sed -i 's/^scale .*/scale 1;/; s/(20 20 1)/(30 45 1)/' "$qc/system/blockMeshDict"
-sed -i 's/^nu .*/nu              0.001;/' "$qc/constant/transportProperties"
-sed -i 's/^deltaT .*/deltaT 0.005;/; s/^endTime .*/endTime 40;/; s/^writeControl .*/writeControl timeStep;/;
-        s/^writeInterval .*/writeInterval 400;/' "$qc/system/controlDict"
-grep -q '(30 45 1)' "$qc/system/blockMeshDict" && grep -q '^writeInterval 400;' "$qc/system/controlDict" ||
-    { echo "  FAIL: could not set up the Re 1000 30 x 45 case"; exit 1; }
-run_in "$qc" blockMesh blockMesh
-mkdir -p "$qc/ico"
-cp -r "$qc/0" "$qc/constant" "$qc/system" "$qc/ico/"
-run_in "$qc/ico" icoFoam icoFoam
-if ! "$UMPPMFOAM" -case "$qc" > "$qc/log.umppmFoam" 2>&1; then
-    echo "  FAIL umppmFoam failed on 30 x 45 cells: $(grep -m1 'FATAL' "$qc/log.umppmFoam" | cut -c1-200)"
-    exit 1
-fi
+re1000_case "$qc" 0.005 400 30 45
+run_both "$qc" " on 30 x 45 cells"
 if grep -q '^UMPPM: variant UMPPM (auto),' "$qc/log.umppmFoam" &&
     grep -q '^A flow driven by its walls alone on quadrilaterals that are not square (1350 of 1350 cells stretched beyond 1.15:1): variant auto (UMPPM' "$qc/log.umppmFoam"; then
     echo "  ok   variant auto is UMPPM on the 1.5:1 cells, and the log says why"
