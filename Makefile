@@ -24,6 +24,7 @@ CPPFLAGS = -Iinclude -I/usr/include/suitesparse -D_XOPEN_SOURCE=700
 CFLAGS_ALL = -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wvla $(WERROR) $(OPT) $(OMP) $(FPFLAGS) $(SAN)
 LDLIBS  = -lumfpack -lklu -lcholmod -lamd -lcolamd -lsuitesparseconfig -lqhull_r -lz -lm
 TEST_LDLIBS = -lcmocka
+NPROC   := $(shell nproc 2>/dev/null || echo 1)
 
 # libopenblas0-serial: Debian then points libblas.so.3 at OpenBLAS (single
 # threaded) instead of the reference BLAS, so UMFPACK's and CHOLMOD's dense
@@ -39,7 +40,7 @@ MLAPP    = $(BUILD)/meshlessFoam
 UNIT_SRC = $(wildcard tests/unit/test_*.c)
 UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 
-.PHONY: all run check unit integration asan debug fuzz deps clean
+.PHONY: all run check unit integration test-programs asan debug fuzz deps clean
 .SECONDARY:
 
 TOOLS    = $(patsubst tools/%.c,$(BUILD)/tools/%,$(wildcard tools/*.c))
@@ -75,8 +76,13 @@ unit: $(UNIT_BIN) $(APP)
 	@set -e; for t in $(UNIT_BIN); do echo "== $$t"; $$t; done
 
 # Tests against OpenFOAM's own tools (blockMesh, gmshToFoam, postProcess...).
-integration: $(APP) $(MLAPP) $(TOOLS) $(BUILD)/geomcheck $(BUILD)/write_cavity_fields $(BUILD)/write_cloud $(BUILD)/killshim.so \
-             $(BUILD)/editshim.so
+INTEGRATION_PROGS = $(APP) $(MLAPP) $(TOOLS) $(BUILD)/geomcheck $(BUILD)/write_cavity_fields $(BUILD)/write_cloud \
+                    $(BUILD)/killshim.so $(BUILD)/editshim.so
+
+# Everything the tests run, built with -j before they start.
+test-programs: $(UNIT_BIN) $(INTEGRATION_PROGS)
+
+integration: $(INTEGRATION_PROGS)
 	@UMPPMFOAM=$(abspath $(APP)) MESHLESSFOAM=$(abspath $(MLAPP)) GEOMCHECK=$(abspath $(BUILD)/geomcheck) \
 	    KILLSHIM=$(abspath $(BUILD)/killshim.so) \
 	    EDITSHIM=$(abspath $(BUILD)/editshim.so) \
@@ -104,16 +110,21 @@ run: deps
 	tutorials/cavity/Allclean && tutorials/cavity/Allrun
 
 # README command 2 (and .ci/run): the whole test suite, from nothing.
+# The programs are built NPROC at a time; the integration tests run NPROC
+# at a time, one thread each (tests/integration/run_all.sh).
 check: deps
+	$(MAKE) -j$(NPROC) BUILD=build/check WERROR=-Werror test-programs
 	$(MAKE) BUILD=build/check WERROR=-Werror unit
 	$(MAKE) BUILD=build/check WERROR=-Werror integration
 	$(MAKE) asan
 
 # -Wno-pass-failed: at -O1 under the sanitizers clang does not vectorise the
 # kernels' `omp simd` loops (a hint, not a requirement).
+ASAN_VARS = BUILD=build/asan CC=clang WERROR=-Werror OPT="-O1 -g -fno-omit-frame-pointer" \
+            SAN="-fsanitize=address,undefined -fno-sanitize-recover=all -Wno-pass-failed"
 asan:
-	UMPPM_KILL_STRIDE=4 $(MAKE) BUILD=build/asan CC=clang WERROR=-Werror OPT="-O1 -g -fno-omit-frame-pointer" \
-	    SAN="-fsanitize=address,undefined -fno-sanitize-recover=all -Wno-pass-failed" unit integration
+	$(MAKE) -j$(NPROC) $(ASAN_VARS) test-programs
+	UMPPM_KILL_STRIDE=4 $(MAKE) $(ASAN_VARS) unit integration
 
 debug:
 	$(MAKE) BUILD=build/debug OPT="-O0 -g -DUMP_DEBUG" all
