@@ -77,3 +77,24 @@ cavity_case() {
     sed -i -E "s/\( *20 +20 +1 *\)/($2 $2 1)/" "$1/system/blockMeshDict"
     setEntry "$1/system/blockMeshDict" scale 1 && setEntry "$1/constant/transportProperties" nu "$3"
 }
+
+# cavity_triangles DIR GEO [H]: the mesh of the case in DIR replaced by the
+# gmsh triangles of tools/GEO (with -setnumber h H if given), converted by
+# gmshToFoam, patches typed as icoFoam's cavity (movingWall and fixedWalls
+# walls, frontAndBack empty); logs in DIR. Returns 1, with a message, on a
+# failure.
+cavity_triangles() {
+    local d=$1 geo=$2 pt
+    local -a size=()
+    [ $# -lt 3 ] || size=(-setnumber h "$3")
+    rm -rf "$d/constant/polyMesh"
+    cp "$bench_top/tools/$geo" "$d/cavity.geo" &&
+        (cd "$d" && gmsh -3 -format msh2 "${size[@]}" cavity.geo -o cavity.msh > log.gmsh 2>&1 &&
+            gmshToFoam cavity.msh > log.gmshToFoam 2>&1) ||
+        { echo "$d: gmsh or gmshToFoam failed (log.gmsh, log.gmshToFoam)" >&2; return 1; }
+    for pt in "movingWall wall" "fixedWalls wall" "frontAndBack empty"; do
+        set -- $pt
+        foamDictionary -entry "entry0/$1/type" -set "$2" "$d/constant/polyMesh/boundary" > /dev/null 2>&1 ||
+            { echo "$d: cannot set the type of patch $1" >&2; return 1; }
+    done
+}

@@ -19,7 +19,7 @@
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 extra="" only=. work=""
-. "$top/bench/cases.sh" # bench_options, bench_prepare, cavity_copy
+. "$top/bench/cases.sh" # bench_options, bench_prepare, cavity_copy, cavity_triangles, logSeconds
 bench_options "umppm extra only only work work" "$@"
 bench_prepare trianglesRe1000
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
@@ -40,8 +40,6 @@ errors() {
     done | awk '{ u += $1; v += $2; k++; lu = $1; lv = $2 }
         END { if (k == 6) printf "%.4f %.4f %.4f %.4f", u / k, v / k, lu, lv; else printf "- - - -" }'
 }
-# cpu LOG: the solver's last ExecutionTime
-cpu() { sed -n 's/^ExecutionTime = \([0-9.e+-]*\) s.*/\1/p' "$1" | tail -1; }
 
 printf "# Re 1000 cavity on triangles, t = 40; RMS from Ghia (u on x = 0.5, v on y = 0.5), mean over t = 30..40 and at t = 40\n"
 printf "# UMPPM { %s }\n" "${extra:-}"
@@ -56,17 +54,8 @@ while IFS='|' read -r name geo h dt; do
     setEntry "$d/system/controlDict" endTime 40
     setEntry "$d/system/controlDict" writeControl runTime
     setEntry "$d/system/controlDict" writeInterval 2
-    rm -rf "$d/constant/polyMesh"
-    cp "$top/tools/$geo" "$d/cavity.geo"
-    if [ "$h" = - ]; then set -- gmsh -3 -format msh2 cavity.geo -o cavity.msh
-    else set -- gmsh -3 -format msh2 -setnumber h "$h" cavity.geo -o cavity.msh; fi
-    (cd "$d" && "$@" > log.gmsh 2>&1 && gmshToFoam cavity.msh > log.gmshToFoam 2>&1) ||
-        { echo "$name: gmsh or gmshToFoam failed (logs in $d)" >&2; continue; }
-    for pt in "movingWall wall" "fixedWalls wall" "frontAndBack empty"; do
-        set -- $pt
-        (cd "$d" && foamDictionary -entry "entry0/$1/type" -set "$2" constant/polyMesh/boundary > /dev/null 2>&1) ||
-            { echo "$name: cannot set the type of patch $1" >&2; continue 2; }
-    done
+    if [ "$h" = - ]; then cavity_triangles "$d" "$geo" || continue
+    else cavity_triangles "$d" "$geo" "$h" || continue; fi
     [ -z "$extra" ] || echo "UMPPM { $extra }" >> "$d/system/fvSolution"
     cells=$(sed -n 's/.*nCells: *\([0-9]*\).*/\1/p' "$d/constant/polyMesh/owner" | head -n 1)
     mkdir -p "$d/ico"
@@ -79,7 +68,7 @@ while IFS='|' read -r name geo h dt; do
     read -r um vm u4 v4 <<< "$(errors "$d")"
     read -r ium ivm iu4 iv4 <<< "$(errors "$d/ico")"
     printf "%-15s %5s %7s | %7s %7s %7s %7s %6s | %7s %7s %7s %7s %6s | %6s %6s\n" "$name" "$cells" "$dt" \
-        "$um" "$vm" "$u4" "$v4" "$(cpu "$d/log.umppmFoam")" "$ium" "$ivm" "$iu4" "$iv4" "$(cpu "$d/ico/log.icoFoam")" \
+        "$um" "$vm" "$u4" "$v4" "$(logSeconds "$d/log.umppmFoam")" "$ium" "$ivm" "$iu4" "$iv4" "$(logSeconds "$d/ico/log.icoFoam")" \
         "$(awk -v a="$um" -v b="$ium" 'BEGIN { printf "%.2f", a / b }')" \
         "$(awk -v a="$vm" -v b="$ivm" 'BEGIN { printf "%.2f", a / b }')"
 done <<< "$cases"

@@ -10,12 +10,13 @@
 #
 # UMPPM_TEST_JOBS (default: the number of processors) tests run at once,
 # each with OMP_NUM_THREADS=1: two OpenMP programs with a thread per core
-# each slow each other down 10-70x on a shared core (README "Threads"), and
-# one thread per test keeps the cores busy without that. The tests that
-# choose their own thread counts (EXCLUSIVE below) run afterwards, one at a
-# time, with the caller's environment. Every test writes into its own
-# mktemp directory; its output is printed whole when it ends, so the log
-# reads as with UMPPM_TEST_JOBS=1 (only the order differs).
+# each slow each other down 10-70x on a shared core (README "Runs sharing
+# the cores"), and one thread per test keeps the cores busy without that.
+# The tests that choose their own thread counts (EXCLUSIVE below) run
+# afterwards, one at a time, with the caller's environment. Every test
+# writes into its own mktemp directory; its output is printed whole when
+# it ends, so the log reads as with UMPPM_TEST_JOBS=1 (only the order
+# differs).
 set -eu
 
 here=$(cd "$(dirname "$0")" && pwd)
