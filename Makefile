@@ -3,7 +3,8 @@
 #   make run        install Debian packages if missing, build, run tutorials/cavity
 #   make check      the whole test suite (-Werror build, unit + OpenFOAM
 #                   integration tests, then all of them again under ASan/UBSan)
-#   make asan       unit and integration tests under AddressSanitizer + UBSan (clang)
+#   make asan       unit and integration tests under AddressSanitizer + UBSan (clang),
+#                   the long accuracy runs cut to a few steps
 #   make debug      -O0 -g -DUMP_DEBUG build in build/debug
 #   make fuzz       libFuzzer harnesses: FoamFile, polyMesh + 2-D mesh, field reader (clang)
 #   make deps       install the Debian packages (apt-get, needs root or sudo)
@@ -122,9 +123,12 @@ check: deps
 # kernels' `omp simd` loops (a hint, not a requirement).
 ASAN_VARS = BUILD=build/asan CC=clang WERROR=-Werror OPT="-O1 -g -fno-omit-frame-pointer" \
             SAN="-fsanitize=address,undefined -fno-sanitize-recover=all -Wno-pass-failed"
+# UMPPM_TEST_SHORT=1: the integration tests' long accuracy runs go a few
+# steps (their figures are asserted by the plain pass of `make check`), and
+# the OpenFOAM reference runs are left out (tests/integration/lib.sh).
 asan:
 	$(MAKE) -j$(NPROC) $(ASAN_VARS) test-programs
-	UMPPM_KILL_STRIDE=4 $(MAKE) $(ASAN_VARS) unit integration
+	UMPPM_KILL_STRIDE=8 UMPPM_TEST_SHORT=1 $(MAKE) $(ASAN_VARS) unit integration
 
 debug:
 	$(MAKE) BUILD=build/debug OPT="-O0 -g -DUMP_DEBUG" all

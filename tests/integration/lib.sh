@@ -16,6 +16,21 @@
 #                              ascii with writePrecision 17
 #   checkmesh_cell_types CASE  one line "hexahedra:N prisms:M ..." from
 #                              CASE/log.checkMesh (non-zero counts only)
+#   short_runs                 true in the sanitizer pass (UMPPM_TEST_SHORT=1)
+#   short_end CASE END         in that pass, end CASE's run at END
+#   short_ran CASE LOG WHAT    in that pass, check the short run ended
+#
+# The short pass. `make check` runs every test twice: built by gcc -O2,
+# then by clang under AddressSanitizer and UBSan (`make asan`), which runs
+# 3-10 x slower. The accuracy cases (hundreds to thousands of steps, their
+# figures measured on the whole run) would take most of the time of the
+# second pass and find nothing more than in their first steps: the
+# sanitizers need each code path run, not run long. So `make asan` sets
+# UMPPM_TEST_SHORT=1, and there the long tests run each of their
+# umppmFoam cases, with the same mesh and settings, for a few steps
+# (short_end), check that it ended cleanly (short_ran), and skip the
+# figures, which the plain pass asserts on the full runs; nor do they run
+# the OpenFOAM solvers that only give reference figures.
 #
 # Every function returns non-zero after printing "lib.sh: ..." to stderr when
 # something fails (they do not rely on set -e, which bash ignores inside
@@ -44,6 +59,42 @@ of_env() {
     if [ -n "$missing" ]; then
         lib_err "missing on PATH:$missing (install the Debian packages 'openfoam' and 'gmsh': make deps)"
         return 1
+    fi
+}
+
+short_runs() {
+    [ "${UMPPM_TEST_SHORT:-0}" = 1 ]
+}
+# short_end CASE END: in the short pass, CASE/system/controlDict's endTime
+# becomes END and its run writes there (writeInterval END; writeControl
+# runTime unless it is adjustableRunTime, which hits END exactly with
+# adjustTimeStep); in the plain pass nothing changes.
+short_end() {
+    short_runs || return 0
+    local f=$1/system/controlDict
+    # (the first entry of each: the top-level one, not a function object's)
+    sed -i -E "0,/(^|[; ])endTime +[^;]*;/s//\1endTime $2;/;
+               0,/(^|[; ])writeControl +[^;]*;/s/(^|[; ])writeControl +(timeStep|cpuTime|clockTime);/\1writeControl runTime;/;
+               0,/(^|[; ])writeInterval +[^;]*;/s//\1writeInterval $2;/" "$f"
+    if [ "$(short_endtime "$1")" != "$2" ]; then
+        lib_err "short_end: could not set endTime $2 in $f"
+        return 1
+    fi
+}
+short_endtime() {
+    sed -n -E 's/(^|.*[; ])endTime +([^;]*);.*/\2/p' "$1/system/controlDict" | head -n 1
+}
+# short_ran CASE LOG WHAT: the short pass's check of a run: its log CASE/LOG
+# has "End" and the end time is written; prints "ok" or "FAIL" (WHAT names
+# the case) and sets the caller's fail=1 on failure.
+short_ran() {
+    local end
+    end=$(short_endtime "$1")
+    if grep -q '^End$' "$1/$2" 2>/dev/null && [ -d "$1/$end" ]; then
+        echo "  ok   short pass: $3 ran to t = $end ($(grep -c '^Time = ' "$1/$2") steps)"
+    else
+        echo "  FAIL short pass: $3 did not reach t = $end: $(grep -m 1 -E 'FATAL|ERROR' "$1/$2" | cut -c1-200)"
+        fail=1
     fi
 }
 

@@ -12,11 +12,14 @@
 # each with OMP_NUM_THREADS=1: two OpenMP programs with a thread per core
 # each slow each other down 10-70x on a shared core (README "Runs sharing
 # the cores"), and one thread per test keeps the cores busy without that.
-# The tests that choose their own thread counts (EXCLUSIVE below) run
-# afterwards, one at a time, with the caller's environment. Every test
-# writes into its own mktemp directory; its output is printed whole when
-# it ends, so the log reads as with UMPPM_TEST_JOBS=1 (only the order
-# differs).
+# The runs that set their own thread count (test_threads.sh and
+# test_meshless.sh compare 1 and 2 threads bit for bit) share the cores
+# with the other tests too: OMP_WAIT_POLICY=passive makes their threads
+# sleep at the barriers instead of spinning (measured: test_meshless.sh
+# 41 s beside another test, 34 s alone; they ran alone, one after the
+# other, until 2026-12-07). Every test writes into its own mktemp
+# directory; its output is printed whole when it ends, so the log reads
+# as with UMPPM_TEST_JOBS=1 (only the order differs).
 set -eu
 
 here=$(cd "$(dirname "$0")" && pwd)
@@ -27,15 +30,13 @@ echo "run_all.sh: UMPPMFOAM=${UMPPMFOAM:-<unset>}"
 echo "run_all.sh: GEOMCHECK=${GEOMCHECK:-<unset>}"
 echo "run_all.sh: $jobs at once"
 
-# Run alone, after the others: they set OMP_NUM_THREADS per run (1 and 2).
-EXCLUSIVE="test_threads.sh test_meshless.sh"
 # Started first, so that the longest do not end up last on one core (the
-# CI of 2026-12-07: 70-170 s each, the others 1-60 s).
-LONGEST="test_nothing_lost.sh test_buoyant.sh test_solver_graded.sh test_solver_re1000.sh
-         test_tutorials.sh test_solver_taylorGreen.sh"
+# CI of 2026-12-07: 90-250 s each in the plain pass, the others 1-60 s;
+# in the sanitizer pass's short runs, lib.sh, 25-110 s)
+LONGEST="test_nothing_lost.sh test_buoyant.sh test_tutorials.sh test_solver_re1000.sh
+         test_solver_graded.sh test_solver_taylorGreen.sh test_meshless.sh"
 
 pooled=""
-alone=""
 for name in $LONGEST; do
     [ -f "$here/$name" ] && pooled="$pooled $name"
 done
@@ -44,17 +45,12 @@ for t in "$here"/test_*.sh; do
     [ -f "$t" ] || continue
     found=$((found + 1))
     name=$(basename "$t")
-    case " $EXCLUSIVE " in *" $name "*) alone="$alone $name"; continue ;; esac
     case " $pooled " in *" $name "*) continue ;; esac
     pooled="$pooled $name"
 done
 if [ "$found" -eq 0 ]; then
     echo "run_all.sh: FAIL: no test_*.sh in $here" >&2
     exit 1
-fi
-if [ "$jobs" -eq 1 ]; then
-    pooled="$pooled $alone"
-    alone=""
 fi
 
 out=$(mktemp -d "${TMPDIR:-/tmp}/umppm-run_all.XXXXXX")
@@ -103,15 +99,14 @@ reap() {
 }
 for name in $pooled; do
     [ "$running" -lt "$jobs" ] || reap
-    if [ "$jobs" -gt 1 ]; then start "$name" OMP_NUM_THREADS=1; else start "$name"; fi
+    if [ "$jobs" -gt 1 ]; then
+        start "$name" OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
+    else
+        start "$name"
+    fi
     running=$((running + 1))
 done
 while [ "$running" -gt 0 ]; do reap; done
-for name in $alone; do
-    start "$name"
-    running=1
-    reap
-done
 
 echo "run_all.sh: summary"
 echo "  passed:${passed:- none}"

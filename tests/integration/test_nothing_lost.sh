@@ -411,7 +411,7 @@ for t in 0 0.01 0.02 0.03; do NEW[$t]=$(dirsum "$ref/$t"); done
 echo "  the run makes $ncalls write-related calls"
 trials=0 lost=0 kfail=0 recovered=0 removed=0
 # UMPPM_KILL_STRIDE k: every k-th call only (the sanitizer pass of make
-# check uses 4 to stay in time; the plain pass tries every call)
+# check uses 8 to stay in time; the plain pass tries every call)
 stride=${UMPPM_KILL_STRIDE:-1}
 for mode in exchange fallback; do
     nox=0
