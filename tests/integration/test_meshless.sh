@@ -35,6 +35,8 @@
 #      the log says the gas phase and sigma are not simulated (sigma also
 #      in v1912's dictionary form), and names the function objects it does
 #      not run; a refused boundary condition names meshlessFoam.
+# In the sanitizer pass (UMPPM_TEST_SHORT=1, lib.sh) the tanks of 3 and 3b
+# run to t = 0.02 s only, unchecked.
 # Needs MESHLESSFOAM and TOOLDIR.
 set -eu -o pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -180,7 +182,12 @@ foam_set "$h" system/controlDict endTime 0.3
 foam_set "$h" system/controlDict writeInterval 0.3
 run_in "$h" blockMesh blockMesh
 run_in "$h" setFields setFields
-if run_in "$h" meshlessFoam "$MESHLESSFOAM" && run_in "$h" writeCellCentres postProcess -func writeCellCentres -time 0.3; then
+# the short pass (lib.sh): this tank and the next to t = 0.02 s, unchecked
+if short_runs; then
+    short_end "$h" 0.02
+    run_in "$h" meshlessFoam "$MESHLESSFOAM" || true
+    short_ran "$h" log.meshlessFoam "the tank at rest, MPS"
+elif run_in "$h" meshlessFoam "$MESHLESSFOAM" && run_in "$h" writeCellCentres postProcess -func writeCellCentres -time 0.3; then
     err=$(paste <(field_values "$h/0.3/C") <(field_values "$h/0.3/p") | awk '
         $1 < 0.01 && $2 < 0.2 { want = 1000 * 9.81 * (0.3 - $2); e = ($4 - want) / want;
             if (e < 0) e = -e; if (e > m) m = e; n++ }
@@ -202,7 +209,11 @@ foam_set "$hf" system/controlDict writeInterval 0.3
 sed -i '/^meshless/,/^}/c\meshless\n{\n    method FPM;\n}' "$hf/system/fvSolution"
 run_in "$hf" blockMesh blockMesh
 run_in "$hf" setFields setFields
-if run_in "$hf" meshlessFoam "$MESHLESSFOAM" && run_in "$hf" writeCellCentres postProcess -func writeCellCentres -time 0.3; then
+if short_runs; then
+    short_end "$hf" 0.02
+    run_in "$hf" meshlessFoam "$MESHLESSFOAM" || true
+    short_ran "$hf" log.meshlessFoam "the tank at rest, FPM"
+elif run_in "$hf" meshlessFoam "$MESHLESSFOAM" && run_in "$hf" writeCellCentres postProcess -func writeCellCentres -time 0.3; then
     err=$(paste <(field_values "$hf/0.3/C") <(field_values "$hf/0.3/p") | awk '
         $1 < 0.01 && $2 < 0.2 { want = 1000 * 9.81 * (0.2975 - $2); e = ($4 - want) / want;
             if (e < 0) e = -e; if (e > m) m = e; n++ }

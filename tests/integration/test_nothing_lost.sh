@@ -50,6 +50,20 @@ ok() { echo "  ok   $*"; }
 bad() { echo "  FAIL $*"; fail=1; }
 # dirsum DIR: one checksum of every file under DIR (names and contents)
 dirsum() { (cd "$1" && find . -type f | LC_ALL=C sort | xargs -r md5sum) | md5sum | cut -c1-32; }
+# dirsums DIR: the same for every directory in DIR (hidden ones too) at
+# once, into SUMS[name]: its files' "md5:path;" joined (the kill test's
+# trials check four directories twice each: one pipeline instead of eight
+# took the test from 221 s to 86 s, gcc build alone on this 2-core VM)
+declare -A SUMS
+dirsums() {
+    local name list
+    SUMS=()
+    while read -r name list; do
+        SUMS[$name]=$list
+    done < <(cd "$1" && find . -mindepth 2 -type f | LC_ALL=C sort | xargs -r md5sum |
+        awk '{ n = split($2, p, "/"); d = p[2]; f = substr($2, length(d) + 4); s[d] = s[d] $1 ":" f ";" }
+             END { for (d in s) print d, s[d] }')
+}
 hidden() { (cd "$1" && ls -A | grep '^\.' || true); }
 # ump DIR LOG ARGS...: run umppmFoam in DIR, log in DIR/log.LOG, stderr in
 # DIR/err.LOG; sets rc
@@ -400,13 +414,15 @@ setctl "$old" writeInterval 2
 setctl "$old" endTime 0.03
 rm -f "$old"/log.* "$old"/err.*
 declare -A OLD NEW
-for t in 0 0.01 0.02; do OLD[$t]=$(dirsum "$old/$t"); done
+dirsums "$old"
+for t in 0 0.01 0.02; do OLD[$t]=${SUMS[$t]}; done
 ref=$work/killref
 cp -R "$old" "$ref"
 rc=0
 LD_PRELOAD=$KILLSHIM UMPPM_KILL_COUNT=$work/count "$UMPPMFOAM" -case "$ref" >/dev/null 2>&1 || rc=$?
 ncalls=$(cat "$work/count" 2>/dev/null || echo 0)
-for t in 0 0.01 0.02 0.03; do NEW[$t]=$(dirsum "$ref/$t"); done
+dirsums "$ref"
+for t in 0 0.01 0.02 0.03; do NEW[$t]=${SUMS[$t]:-}; done
 [ "$rc" -eq 0 ] && [ "$ncalls" -gt 20 ] || { bad "counting run: exit $rc, $ncalls calls"; ncalls=0; }
 echo "  the run makes $ncalls write-related calls"
 trials=0 lost=0 kfail=0 recovered=0 removed=0
@@ -427,18 +443,19 @@ for mode in exchange fallback; do
         why=""
         [ "$rc" -eq 137 ] || why="exit $rc, not killed"
         # right after the kill: each old time complete, old or new version
+        dirsums "$d"
         for t in 0 0.01 0.02; do
             if [ -d "$d/$t" ]; then
-                s=$(dirsum "$d/$t")
+                s=${SUMS[$t]:-}
                 [ "$s" = "${OLD[$t]}" ] || [ "$s" = "${NEW[$t]}" ] || why="$why; $t corrupt after the kill"
             else
                 o=$(ls -d "$d/.$t.old."* 2>/dev/null | head -n 1)
-                if [ $mode = exchange ] || [ -z "$o" ] || [ "$(dirsum "$o")" != "${OLD[$t]}" ]; then
+                if [ $mode = exchange ] || [ -z "$o" ] || [ "${SUMS[${o##*/}]:-}" != "${OLD[$t]}" ]; then
                     why="$why; $t missing after the kill"
                 fi
             fi
         done
-        if [ -d "$d/0.03" ] && [ "$(dirsum "$d/0.03")" != "${NEW[0.03]}" ]; then
+        if [ -d "$d/0.03" ] && [ "${SUMS[0.03]:-}" != "${NEW[0.03]}" ]; then
             why="$why; 0.03 incomplete"
         fi
         # the restart's recovery
@@ -448,12 +465,13 @@ for mode in exchange fallback; do
         recovered=$((recovered + $(grep -c '^Recovered time' "$d/log.recover" || true)))
         removed=$((removed + $(grep -c '^Removed' "$d/log.recover" || true)))
         [ -z "$(hidden "$d")" ] || why="$why; left hidden: $(hidden "$d" | tr '\n' ' ')"
+        dirsums "$d"
         for t in 0 0.01 0.02; do
             if [ ! -d "$d/$t" ]; then
                 lost=$((lost + 1))
                 why="$why; $t lost"
             else
-                s=$(dirsum "$d/$t")
+                s=${SUMS[$t]:-}
                 if [ "$s" != "${OLD[$t]}" ] && [ "$s" != "${NEW[$t]}" ]; then
                     lost=$((lost + 1))
                     why="$why; $t corrupt"
