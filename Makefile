@@ -2,7 +2,8 @@
 #   make            release build: build/release/umppmFoam (+ ./bin/umppmFoam link)
 #   make run        install Debian packages if missing, build, run tutorials/cavity
 #   make check      the whole test suite (-Werror build, unit + OpenFOAM
-#                   integration tests, then all of them again under ASan/UBSan)
+#                   integration tests, every figure asserted; then all of them
+#                   again under ASan/UBSan, the long runs short: make asan)
 #   make asan       unit and integration tests under AddressSanitizer + UBSan (clang),
 #                   the long accuracy runs cut to a few steps
 #   make debug      -O0 -g -DUMP_DEBUG build in build/debug
@@ -116,7 +117,7 @@ run: deps
 check: deps
 	$(MAKE) -j$(NPROC) BUILD=build/check WERROR=-Werror test-programs
 	$(MAKE) BUILD=build/check WERROR=-Werror unit
-	$(MAKE) BUILD=build/check WERROR=-Werror integration
+	UMPPM_TEST_SHORT= UMPPM_KILL_STRIDE= $(MAKE) BUILD=build/check WERROR=-Werror integration
 	$(MAKE) asan
 
 # -Wno-pass-failed: at -O1 under the sanitizers clang does not vectorise the

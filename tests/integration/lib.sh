@@ -30,7 +30,8 @@
 # umppmFoam cases, with the same mesh and settings, for a few steps
 # (short_end), check that it ended cleanly (short_ran), and skip the
 # figures, which the plain pass asserts on the full runs; nor do they run
-# the OpenFOAM solvers that only give reference figures.
+# the OpenFOAM solvers that only give reference figures (but for the
+# annulus tutorial's Allrun -test in test_buoyant.sh).
 #
 # Every function returns non-zero after printing "lib.sh: ..." to stderr when
 # something fails (they do not rely on set -e, which bash ignores inside
@@ -72,28 +73,34 @@ short_runs() {
 short_end() {
     short_runs || return 0
     local f=$1/system/controlDict
-    # (the first entry of each: the top-level one, not a function object's)
-    sed -i -E "0,/(^|[; ])endTime +[^;]*;/s//\1endTime $2;/;
+    # (the first entry of each: the top-level one, not a function object's;
+    # comment lines are left alone)
+    sed -i -E "/^[[:space:]]*\/\//b;
+               0,/(^|[; ])endTime +[^;]*;/s//\1endTime $2;/;
                0,/(^|[; ])writeControl +[^;]*;/s/(^|[; ])writeControl +(timeStep|cpuTime|clockTime);/\1writeControl runTime;/;
                0,/(^|[; ])writeInterval +[^;]*;/s//\1writeInterval $2;/" "$f"
-    if [ "$(short_endtime "$1")" != "$2" ]; then
-        lib_err "short_end: could not set endTime $2 in $f"
+    if [ "$(short_endtime "$1")" != "$2" ] ||
+        ! grep -v '^[[:space:]]*//' "$f" | grep -Eq "(^|[; ])writeInterval $2;"; then
+        lib_err "short_end: could not set endTime and writeInterval $2 in $f"
         return 1
     fi
 }
 short_endtime() {
-    sed -n -E 's/(^|.*[; ])endTime +([^;]*);.*/\2/p' "$1/system/controlDict" | head -n 1
+    grep -v '^[[:space:]]*//' "$1/system/controlDict" | sed -n -E 's/(^|.*[; ])endTime +([^;]*);.*/\2/p' | head -n 1
 }
-# short_ran CASE LOG WHAT: the short pass's check of a run: its log CASE/LOG
-# has "End" and the end time is written; prints "ok" or "FAIL" (WHAT names
-# the case) and sets the caller's fail=1 on failure.
+# short_ran CASE LOG WHAT RC: the short pass's check of a run that exited
+# with RC: RC 0, its log CASE/LOG has "End" and no sanitizer report (a
+# leak is reported after "End", at exit), and the end time is written;
+# prints "ok" or "FAIL" (WHAT names the case) and sets the caller's fail=1
+# on failure.
 short_ran() {
     local end
     end=$(short_endtime "$1")
-    if grep -q '^End$' "$1/$2" 2>/dev/null && [ -d "$1/$end" ]; then
+    if [ "$4" -eq 0 ] && grep -q '^End$' "$1/$2" 2>/dev/null && [ -d "$1/$end" ] &&
+        ! grep -Eq 'Sanitizer|runtime error:' "$1/$2"; then
         echo "  ok   short pass: $3 ran to t = $end ($(grep -c '^Time = ' "$1/$2") steps)"
     else
-        echo "  FAIL short pass: $3 did not reach t = $end: $(grep -m 1 -E 'FATAL|ERROR' "$1/$2" | cut -c1-200)"
+        echo "  FAIL short pass: $3: exit $4, t = $end: $(grep -m 1 -E 'FATAL|ERROR|Sanitizer|runtime error:' "$1/$2" | cut -c1-200)"
         fail=1
     fi
 }

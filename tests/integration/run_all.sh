@@ -29,6 +29,7 @@ case $jobs in '' | *[!0-9]* | 0) echo "run_all.sh: UMPPM_TEST_JOBS must be a pos
 echo "run_all.sh: UMPPMFOAM=${UMPPMFOAM:-<unset>}"
 echo "run_all.sh: GEOMCHECK=${GEOMCHECK:-<unset>}"
 echo "run_all.sh: $jobs at once"
+echo "run_all.sh: UMPPM_TEST_SHORT=${UMPPM_TEST_SHORT:-<unset>} (1: the long accuracy runs short, lib.sh)"
 
 # Started first, so that the longest do not end up last on one core (the
 # CI of 2026-12-07: 90-250 s each in the plain pass, the others 1-60 s;

@@ -423,7 +423,8 @@ LD_PRELOAD=$KILLSHIM UMPPM_KILL_COUNT=$work/count "$UMPPMFOAM" -case "$ref" >/de
 ncalls=$(cat "$work/count" 2>/dev/null || echo 0)
 dirsums "$ref"
 for t in 0 0.01 0.02 0.03; do NEW[$t]=${SUMS[$t]:-}; done
-[ "$rc" -eq 0 ] && [ "$ncalls" -gt 20 ] || { bad "counting run: exit $rc, $ncalls calls"; ncalls=0; }
+[ "$rc" -eq 0 ] && [ "$ncalls" -gt 20 ] && [ -n "${NEW[0.01]}" ] && [ -n "${NEW[0.02]}" ] && [ -n "${NEW[0.03]}" ] ||
+    { bad "counting run: exit $rc, $ncalls calls, times written: $(ls "$ref" | grep '^[0-9]' | tr '\n' ' ')"; ncalls=0; }
 echo "  the run makes $ncalls write-related calls"
 trials=0 lost=0 kfail=0 recovered=0 removed=0
 # UMPPM_KILL_STRIDE k: every k-th call only (the sanitizer pass of make

@@ -58,11 +58,13 @@ re1000_case() {
 }
 # run_both DIR WHAT: icoFoam on a copy of the case in DIR/ico, umppmFoam in
 # DIR (log.umppmFoam); the test stops if umppmFoam fails (WHAT names the
-# case). In the short pass (lib.sh) umppmFoam alone, to t = 0.5.
+# case). In the short pass (lib.sh) umppmFoam alone, to t = 0.5, its exit
+# status in short_rc.
 run_both() {
     if short_runs; then
         short_end "$1" 0.5
-        "$UMPPMFOAM" -case "$1" > "$1/log.umppmFoam" 2>&1 || true
+        short_rc=0
+        "$UMPPMFOAM" -case "$1" > "$1/log.umppmFoam" 2>&1 || short_rc=$?
         return 0
     fi
     mkdir -p "$1/ico"
@@ -81,7 +83,7 @@ run_both "$c" ""
 # u_rms v_rms of CASE at TIME
 ghia() { "$TOOLDIR/ghiaCompare" -Re 1000 "$1" "$2" | tail -1 | awk '{ print $3, $5 }'; }
 if short_runs; then
-    short_ran "$c" log.umppmFoam "40 x 40 cells"
+    short_ran "$c" log.umppmFoam "40 x 40 cells" "$short_rc"
 else
     times=$(ls "$c" | grep -E '^[0-9.]+$' | awk '$1 >= 30' | sort -g)
     n=$(echo "$times" | wc -w)
@@ -182,7 +184,7 @@ mean_errors() {
         awk '{ u += $1; v += $2; k++ } END { if (k != 6) print "nan nan"; else printf "%.5f %.5f\n", u / k, v / k }'
 }
 if short_runs; then
-    short_ran "$tc" log.umppmFoam "triangles"
+    short_ran "$tc" log.umppmFoam "triangles" "$short_rc"
 else
     read -r tu tv <<< "$(mean_errors "$tc")"
     read -r ticu ticv <<< "$(mean_errors "$tc/ico")"
@@ -213,7 +215,7 @@ else
     fail=1
 fi
 if short_runs; then
-    short_ran "$qc" log.umppmFoam "30 x 45 cells"
+    short_ran "$qc" log.umppmFoam "30 x 45 cells" "$short_rc"
 else
     read -r qu qv <<< "$(mean_errors "$qc")"
     read -r qiu qiv <<< "$(mean_errors "$qc/ico")"
