@@ -18,7 +18,8 @@
 #                              CASE/log.checkMesh (non-zero counts only)
 #   short_runs                 true in the sanitizer pass (UMPPM_TEST_SHORT=1)
 #   short_end CASE END         in that pass, end CASE's run at END
-#   short_ran CASE LOG WHAT    in that pass, check the short run ended
+#   short_ran CASE LOG WHAT RC in that pass, check the short run ended
+#   short_run CASE END LOG WHAT CMD...  both, around CMD run in CASE
 #
 # The short pass. `make check` runs every test twice: built by gcc -O2,
 # then by clang under AddressSanitizer and UBSan (`make asan`), which runs
@@ -103,6 +104,17 @@ short_ran() {
         echo "  FAIL short pass: $3: exit $4, t = $end: $(grep -m 1 -E 'FATAL|ERROR|Sanitizer|runtime error:' "$1/$2" | cut -c1-200)"
         fail=1
     fi
+}
+
+# short_run CASE END LOG WHAT CMD...: the short pass's run of a case:
+# short_end CASE END (not if END is empty), CMD run in CASE with its
+# output in CASE/LOG, and short_ran on its exit status.
+short_run() {
+    local d=$1 end=$2 log=$3 what=$4 rc=0
+    shift 4
+    [ -z "$end" ] || short_end "$d" "$end" || { fail=1; return 0; }
+    (cd "$d" && "$@") > "$d/$log" 2>&1 || rc=$?
+    short_ran "$d" "$log" "$what" "$rc"
 }
 
 # run_in CASE LOGNAME CMD...: run CMD inside CASE, output to CASE/log.LOGNAME.

@@ -131,17 +131,12 @@ foam_set "$s" system/controlDict endTime 1000
 foam_set "$s" system/controlDict writeInterval 2000
 foam_set "$s/of" system/controlDict endTime 1000
 if short_runs; then
-    short_end "$s" 10
-    rc=0
-    run_ump "$s" || rc=$?
-    short_ran "$s" log.umppmFoam "stratified box" "$rc"
+    short_run "$s" 10 log.umppmFoam "stratified box" "$UMPPMFOAM"
     # and the paper's splitting (buoyancy source) on the same case
     s2=$work/stratifiedSource
     mkdir "$s2" && cp -r "$s/0" "$s/constant" "$s/system" "$s2/"
     echo 'UMPPM { buoyancy source; }' >> "$s2/system/fvSolution"
-    rc=0
-    run_ump "$s2" || rc=$?
-    short_ran "$s2" log.umppmFoam "stratified box, buoyancy source" "$rc"
+    short_run "$s2" "" log.umppmFoam "stratified box, buoyancy source" "$UMPPMFOAM"
 elif run_ump "$s" && run_in "$s/of" buoyantBoussinesqPimpleFoam buoyantBoussinesqPimpleFoam; then
     "$TOOLDIR/foamCompare" "$s" 1000 "$s/of" 1000 T p_rgh p | tee "$s/compare.txt"
     check_below "T: L2 difference / range" "$(awk '$1 == "T" { print $6 }' "$s/compare.txt")" 0.01
@@ -261,10 +256,7 @@ for v in box symmetry graded gradedLinear triangles trianglesLinear opening; do
     foam_set "$g" system/controlDict endTime 200
     foam_set "$g" system/controlDict writeInterval 5
     if short_runs; then
-        short_end "$g" 5
-        rc=0
-        run_ump "$g" || rc=$?
-        short_ran "$g" log.umppmFoam "stratified $v" "$rc"
+        short_run "$g" 5 log.umppmFoam "stratified $v" "$UMPPMFOAM"
     elif run_ump "$g"; then
         read -r um ut < <(max_u_run "$g") || { um=nan; ut=-; }
         case $v in
@@ -297,10 +289,7 @@ for n in 40 20; do
     foam_set "$d" system/controlDict writeInterval 100
     add_nusselt "$d"
     if short_runs; then
-        short_end "$d" 2
-        rc=0
-        run_ump "$d" || rc=$?
-        short_ran "$d" log.umppmFoam "de Vahl Davis $n x $n" "$rc"
+        short_run "$d" 2 log.umppmFoam "de Vahl Davis $n x $n" "$UMPPMFOAM"
         continue
     fi
     if ! run_ump "$d"; then

@@ -295,10 +295,7 @@ fi
 short_small_step() {
     short_runs || return 1
     if [ "$(sed -n 's/^deltaT *\([^;]*\);/\1/p' "$1/system/controlDict")" = 0.00005 ]; then
-        short_end "$1" 0.005
-        local rc=0
-        "$UMPPMFOAM" -case "$1" > "$1/log.umppmFoam" 2>&1 || rc=$?
-        short_ran "$1" log.umppmFoam "$2" "$rc"
+        short_run "$1" 0.005 log.umppmFoam "$2" "$UMPPMFOAM"
         return 0
     fi
     return 1
