@@ -80,11 +80,11 @@ cavity_case() {
 
 # cavity_triangles DIR GEO [H]: the mesh of the case in DIR replaced by the
 # gmsh triangles of tools/GEO (with -setnumber h H if given), converted by
-# gmshToFoam, patches typed as icoFoam's cavity (movingWall and fixedWalls
-# walls, frontAndBack empty); logs in DIR. Returns 1, with a message, on a
-# failure.
+# gmshToFoam, the patches typed as GEO's "// foam-patch-type:" lines say
+# (icoFoam's cavity: movingWall and fixedWalls walls, frontAndBack empty);
+# logs in DIR. Returns 1, with a message, on a failure.
 cavity_triangles() {
-    local d=$1 geo=$2 pt
+    local d=$1 geo=$2 pt ty
     local -a size=()
     [ $# -lt 3 ] || size=(-setnumber h "$3")
     rm -rf "$d/constant/polyMesh"
@@ -92,9 +92,10 @@ cavity_triangles() {
         (cd "$d" && gmsh -3 -format msh2 "${size[@]}" cavity.geo -o cavity.msh > log.gmsh 2>&1 &&
             gmshToFoam cavity.msh > log.gmshToFoam 2>&1) ||
         { echo "$d: gmsh or gmshToFoam failed (log.gmsh, log.gmshToFoam)" >&2; return 1; }
-    for pt in "movingWall wall" "fixedWalls wall" "frontAndBack empty"; do
-        set -- $pt
-        foamDictionary -entry "entry0/$1/type" -set "$2" "$d/constant/polyMesh/boundary" > /dev/null 2>&1 ||
-            { echo "$d: cannot set the type of patch $1" >&2; return 1; }
-    done
+    # the patch types the geo file lists as "// foam-patch-type: <patch> <type>"
+    while read -r pt ty; do
+        [ -n "$pt" ] || continue
+        foamDictionary -entry "entry0/$pt/type" -set "$ty" "$d/constant/polyMesh/boundary" > /dev/null 2>&1 ||
+            { echo "$d: cannot set the type of patch $pt" >&2; return 1; }
+    done < <(sed -n 's|^[[:space:]]*//[[:space:]]*foam-patch-type:[[:space:]]*||p' "$d/cavity.geo")
 }

@@ -11,6 +11,12 @@ Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
 Curve Loop(1) = {1, 2, 3, 4};
 Plane Surface(1) = {1};
 out[] = Extrude {0, 0, 0.1} { Surface{1}; Layers{1}; Recombine; };
+// The patch types gmshToFoam cannot know, set by the scripts that mesh
+// with this file (tests/integration/lib.sh mesh_from_geo, bench/cases.sh
+// cavity_triangles, tools/cavityValidate.sh):
+// foam-patch-type: movingWall wall
+// foam-patch-type: fixedWalls wall
+// foam-patch-type: frontAndBack empty
 Physical Surface("frontAndBack") = {1, out[0]};
 Physical Surface("movingWall") = {out[4]};
 Physical Surface("fixedWalls") = {out[2], out[3], out[5]};

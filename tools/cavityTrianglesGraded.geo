@@ -21,6 +21,12 @@ Field[2].DistMax = 0.25;
 Background Field = 2;
 Mesh.CharacteristicLengthExtendFromBoundary = 0;
 out[] = Extrude {0, 0, 0.1} { Surface{1}; Layers{1}; Recombine; };
+// The patch types gmshToFoam cannot know, set by the scripts that mesh
+// with this file (tests/integration/lib.sh mesh_from_geo, bench/cases.sh
+// cavity_triangles, tools/cavityValidate.sh):
+// foam-patch-type: movingWall wall
+// foam-patch-type: fixedWalls wall
+// foam-patch-type: frontAndBack empty
 Physical Surface("frontAndBack") = {1, out[0]};
 Physical Surface("movingWall") = {out[4]};
 Physical Surface("fixedWalls") = {out[2], out[3], out[5]};

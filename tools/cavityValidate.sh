@@ -141,11 +141,12 @@ else
     cp "$top/tools/cavityTriangles.geo" "$dir/cavity.geo"
     run "$dir/log.gmsh" gmsh -3 -format msh2 -setnumber h "$h" "$dir/cavity.geo" -o "$dir/cavity.msh"
     run "$dir/log.gmshToFoam" gmshToFoam -case "$dir" "$dir/cavity.msh"
-    for pt in "movingWall wall" "fixedWalls wall" "frontAndBack empty"; do
-        set -- $pt
+    # the patch types the geo file lists as "// foam-patch-type: <patch> <type>"
+    while read -r pt ty; do
+        [ -n "$pt" ] || continue
         run "$dir/log.foamDictionary" foamDictionary "$dir/constant/polyMesh/boundary" \
-            -entry "entry0/$1/type" -set "$2"
-    done
+            -entry "entry0/$pt/type" -set "$ty"
+    done < <(sed -n 's|^[[:space:]]*//[[:space:]]*foam-patch-type:[[:space:]]*||p' "$dir/cavity.geo")
 fi
 run "$dir/log.checkMesh" checkMesh -case "$dir"
 grep -q '^Mesh OK' "$dir/log.checkMesh" || { echo "cavityValidate.sh: checkMesh failed ($dir/log.checkMesh)" >&2; exit 1; }

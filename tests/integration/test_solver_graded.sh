@@ -95,13 +95,15 @@ refdir=$(cd "$here/../../tools/reference/graded_cavity_icoFoam160_t0.5" && pwd)
 work=$(mktemp -d "${TMPDIR:-/tmp}/umppm-graded.XXXXXX")
 fail=0
 
-# max |U| of the internal field of FILE (lib.sh field_values)
-max_speed() {
-    field_values "$1" | awk '{ s = sqrt($1 * $1 + $2 * $2); if (s > m) m = s } END { printf "%.6g\n", m }'
-}
+# max_speed FILE: max |U| of the internal field of FILE
+max_speed() { max_speed_files "$1" | cut -d' ' -f1; }
 # max_over DIR...: the largest max |U| over the U files of the time
-# directories DIR
-max_over() { for t in "$@"; do max_speed "$t/U"; done | sort -g | tail -1; }
+# directories DIR (one awk for all: lib.sh max_speed_files)
+max_over() {
+    local t f=()
+    for t in "$@"; do f+=("$t/U"); done
+    max_speed_files "${f[@]}" | cut -d' ' -f1
+}
 # rel_l2 CASE_A CASE_B: relative L2 of U at t = 0.5 (foamCompare)
 rel_l2() { "$TOOLDIR/foamCompare" "$1" 0.5 "$2" 0.5 U | awk '$1 == "U" { print $4 }'; }
 # mean_l2 CASE REF: the mean over the nine writes t = 0.3 ... 0.5 of CASE of

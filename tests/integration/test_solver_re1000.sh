@@ -159,12 +159,7 @@ fi
 tc=$work/triangles
 re1000_case "$tc" 0.0125 160
 cp "$top/tools/cavityTriangles.geo" "$tc/cavity.geo"
-run_in "$tc" gmsh gmsh -3 -format msh2 -setnumber h 0.04125 cavity.geo -o cavity.msh
-run_in "$tc" gmshToFoam gmshToFoam cavity.msh
-for pt in "movingWall wall" "fixedWalls wall" "frontAndBack empty"; do
-    set -- $pt
-    foam_set "$tc" constant/polyMesh/boundary "entry0/$1/type" "$2"
-done
+mesh_from_geo "$tc" "$tc/cavity.geo" 0.04125
 ncells=$(sed -n 's/.*nCells: *\([0-9]*\).*/\1/p' "$tc/constant/polyMesh/owner" | head -n 1)
 run_both "$tc" " on triangles"
 if grep -q '^UMPPM: .*pressureTheta 0.5 (auto)' "$tc/log.umppmFoam"; then
