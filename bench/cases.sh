@@ -92,10 +92,9 @@ cavity_triangles() {
         (cd "$d" && gmsh -3 -format msh2 "${size[@]}" cavity.geo -o cavity.msh > log.gmsh 2>&1 &&
             gmshToFoam cavity.msh > log.gmshToFoam 2>&1) ||
         { echo "$d: gmsh or gmshToFoam failed (log.gmsh, log.gmshToFoam)" >&2; return 1; }
-    # the patch types the geo file lists as "// foam-patch-type: <patch> <type>"
     while read -r pt ty; do
         [ -n "$pt" ] || continue
         foamDictionary -entry "entry0/$pt/type" -set "$ty" "$d/constant/polyMesh/boundary" > /dev/null 2>&1 ||
             { echo "$d: cannot set the type of patch $pt" >&2; return 1; }
-    done < <(sed -n 's|^[[:space:]]*//[[:space:]]*foam-patch-type:[[:space:]]*||p' "$d/cavity.geo")
+    done < <(geoPatchTypes "$d/cavity.geo") # tutorials/RunFunctions
 }

@@ -53,11 +53,11 @@ errors() {
 # field averaged over the writes t = 50, 60 ... 120 and the mean of the
 # single writes' errors
 steady_errors() {
-    local t a=()
-    for t in 50 60 70 80 90 100 110 120; do a+=("$1" "$t"); done
+    local t a=() times="50 60 70 80 90 100 110 120"
+    for t in $times; do a+=("$1" "$t"); done
     {
         "$ghia" -Re 1000 -mean "${a[@]}" | tail -1 | awk '$1 == "mean" && $2 == 8 { print "avg", $4, $6 }'
-        for t in 50 60 70 80 90 100 110 120; do "$ghia" -Re 1000 "$1" "$t" | tail -1; done |
+        for t in $times; do "$ghia" -Re 1000 "$1" "$t" | tail -1; done |
             awk '{ u += $3; v += $5; k++ } END { if (k == 8) print "single", u / k, v / k }'
     } | awk '$1 == "avg" { ua = $2; va = $3 } $1 == "single" { us = $2; vs = $3 }
         END { if (ua == "" || us == "") printf "- - - -"; else printf "%.4f %.4f %.4f %.4f", ua, va, us, vs }'
@@ -69,12 +69,11 @@ else
     printf "# Re 1000 cavity on triangles, t = 40; RMS from Ghia (u on x = 0.5, v on y = 0.5), mean over t = 30..40 and at t = 40\n"
 fi
 printf "# UMPPM { %s }\n" "${extra:-}"
+row="%-15s %5s %7s | %7s %7s %7s %7s %6s | %7s %7s %7s %7s %6s | %6s %6s\n"
 if [ "$steady" = yes ]; then
-    printf "%-15s %5s %7s | %7s %7s %7s %7s %6s | %7s %7s %7s %7s %6s | %6s %6s\n" case cells deltaT \
-        u_avg v_avg u_single v_single cpu_s ico_u ico_v ico_u ico_v ico_s u_rat v_rat
+    printf "$row" case cells deltaT u_avg v_avg u_single v_single cpu_s ico_u ico_v ico_u ico_v ico_s u_rat v_rat
 else
-    printf "%-15s %5s %7s | %7s %7s %7s %7s %6s | %7s %7s %7s %7s %6s | %6s %6s\n" case cells deltaT \
-        u_mean v_mean u_40 v_40 cpu_s ico_um ico_vm ico_u40 ico_v40 ico_s u_rat v_rat
+    printf "$row" case cells deltaT u_mean v_mean u_40 v_40 cpu_s ico_um ico_vm ico_u40 ico_v40 ico_s u_rat v_rat
 fi
 while IFS='|' read -r name geo h dt; do
     [[ $name =~ $only ]] || continue
@@ -110,7 +109,7 @@ while IFS='|' read -r name geo h dt; do
         read -r um vm u4 v4 <<< "$(errors "$d")"
         read -r ium ivm iu4 iv4 <<< "$(errors "$d/ico")"
     fi
-    printf "%-15s %5s %7s | %7s %7s %7s %7s %6s | %7s %7s %7s %7s %6s | %6s %6s\n" "$name" "$cells" "$dt" \
+    printf "$row" "$name" "$cells" "$dt" \
         "$um" "$vm" "$u4" "$v4" "$(logSeconds "$d/log.umppmFoam")" "$ium" "$ivm" "$iu4" "$iv4" "$(logSeconds "$d/ico/log.icoFoam")" \
         "$(awk -v a="$um" -v b="$ium" 'BEGIN { printf "%.2f", a / b }')" \
         "$(awk -v a="$vm" -v b="$ivm" 'BEGIN { printf "%.2f", a / b }')"

@@ -50,9 +50,9 @@ ok() { echo "  ok   $*"; }
 bad() { echo "  FAIL $*"; fail=1; }
 # dirsums DIR: for every directory in DIR (hidden ones too) at once, the
 # checksums of its files (names and contents) into SUMS[name], as
-# "md5:path;" joined (the kill test's
-# trials check four directories twice each: one pipeline instead of eight
-# took the test from 221 s to 86 s, gcc build alone on this 2-core VM)
+# "md5:path;" joined (the kill test's trials check four directories twice
+# each: one pipeline instead of eight took the test from 221 s to 86 s,
+# gcc build alone on this 2-core VM)
 declare -A SUMS
 dirsums() {
     local name list
