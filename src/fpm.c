@@ -71,6 +71,7 @@ struct fpm {
     size_t mcap;
     double *hx, *hy;            /* [mcap] the coordinates handed to qhull */
     size_t *hmap;               /* [mcap] their particles */
+    vor_work *vw;               /* the hole search's arrays, kept between steps */
     double *dsx, *dsy, *dsu, *dsv; /* [mcap] particle shifts and their velocity changes */
     double dt_last;             /* the last step's dt (particle shifting) */
     int rows_stale;             /* particles hidden or shown: search again */
@@ -158,6 +159,8 @@ ump_status fpm_create(const fpm_params *prm, part_set *s, size_t nwall, size_t n
             if (a || b)
                 f->n0 += surf_weight(prm->l0 * hypot(a, b), prm->re_s * prm->l0);
     ump_status rc = reserve(f, err);
+    if (rc == UMP_OK)
+        rc = vor_work_create(&f->vw, err);
     if (rc == UMP_OK) {
         f->wnx = ump_alloc_array(nwall + 1, sizeof *f->wnx);
         f->wny = ump_alloc_array(nwall + 1, sizeof *f->wny);
@@ -222,6 +225,7 @@ void fpm_free(fpm **pf)
     free(f->hx);
     free(f->hy);
     free(f->hmap);
+    vor_work_free(&f->vw);
     free(f->dsx);
     free(f->dsy);
     free(f->dsu);
@@ -988,11 +992,12 @@ ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char *
             f->mask[m] = (unsigned char)in;
             m++;
         }
-        vor_hole *H = NULL;
+        const vor_hole *H = NULL;
         size_t nh = 0;
         /* the largest holes whose centre lies inside their triangle
-         * (barycentric >= -0.05): not across a wall (vor.h) */
-        UMP_CALL(vor_holes_inside(f->hx, f->hy, m, f->mask, mg->r_hole * l0, 0.05, &H, &nh, err));
+         * (barycentric >= -0.05): not across a wall (vor.h); H is the
+         * workspace's, valid until its next search */
+        UMP_CALL(vor_work_holes_inside(f->vw, f->hx, f->hy, m, f->mask, mg->r_hole * l0, 0.05, &H, &nh, err));
         for (size_t k = 0; k < m; k++)
             f->mask[k] = 0; /* now: vertex used by an insertion of this call */
         ump_status rc = UMP_OK;
@@ -1038,7 +1043,6 @@ ump_status fpm_manage(fpm *f, const fpm_manage_params *mg, const unsigned char *
             f->mask[o->v[0]] = f->mask[o->v[1]] = f->mask[o->v[2]] = 1;
             ms->inserted++;
         }
-        free(H);
         UMP_CALL(rc);
     }
     return UMP_OK;

@@ -124,10 +124,14 @@ static ump_status setup_ilu0(lsolve_krylov *k, const lsolve_mat *A, ump_err *err
     const ump_idx n = A->n, *Ap = A->Ap, *Ai = A->Ai;
     size_t nnz = (size_t)Ap[n];
     if (nnz > k->cap) {
-        double *lu = ump_realloc_array(k->lu, nnz, sizeof *lu);
-        UMP_CHECK(lu, err, UMP_ERR_NOMEM, "BiCGSTAB/ILU(0): out of memory for %zu entries", nnz);
+        /* by half again at least: a pattern that grows by a few entries
+         * per step (the meshless solvers' moving particles) reallocates
+         * only every few steps */
+        size_t nc = UMP_MAX(nnz, k->cap + k->cap / 2);
+        double *lu = ump_realloc_array(k->lu, nc, sizeof *lu);
+        UMP_CHECK(lu, err, UMP_ERR_NOMEM, "BiCGSTAB/ILU(0): out of memory for %zu entries", nc);
         k->lu = lu;
-        k->cap = nnz;
+        k->cap = nc;
     }
     double *lu = k->lu;
     memcpy(lu, A->Ax, sizeof *lu * nnz);

@@ -31,8 +31,17 @@
  * in a canonical order of their coordinates, so a circle's bits depend only
  * on its three points, not on their input numbering or qhull's facet order.
  *
- * qhull reports errors on its errfile: that is an open_memstream buffer
- * (nothing reaches stdout/stderr) whose first error line goes into err.
+ * qhull reports errors on its errfile: that is an fmemopen stream on a
+ * fixed buffer of the workspace (nothing reaches stdout/stderr) whose first
+ * error line goes into err.
+ *
+ * Memory: every array of a search (qhull's input, the holes, the grid and
+ * the candidates) lives in a vor_work and only grows, so a caller that
+ * keeps one workspace allocates nothing of ours once the sizes have been
+ * reached. qhull's own memory (its facets, vertices and sets, in blocks of
+ * qh_MEMbufsize) is allocated and freed inside each triangulation: the
+ * library's qh_new_qhull re-initialises its memory manager on every call,
+ * so there is no supported way to keep it.
  */
 #include "umppm/vor.h"
 
@@ -48,6 +57,73 @@
 #define VOR_QHULL_OPTS "qhull d Qbb Qt Qz Q12"
 /* Longest qhull message copied into err (err->msg is 1024 bytes). */
 #define VOR_MSG_MAX 800
+/* qhull's error stream: its first lines, the ones that name the error */
+#define VOR_EBUF 16384
+
+struct vor_work {
+    qhT *qh;                 /* ~ 9 kB: not on a thread's stack */
+    FILE *ferr;              /* fmemopen on ebuf */
+    char ebuf[VOR_EBUF];
+    coordT *pts;             /* [2 ptcap] qhull's input */
+    size_t ptcap;
+    vor_hole *h;             /* [hcap] the holes */
+    size_t hcap;
+    size_t *sub;             /* [scap] the candidates (vor_work_holes_inside) */
+    size_t scap;
+    double *sxy;             /* [2 xycap] their coordinates: x, then y from xycap */
+    size_t xycap;
+    size_t *gstart, *gidx;   /* [gcap + 1], [icap] the grid */
+    size_t gcap, icap;
+};
+
+/* Grow *p to at least n elements of size sz (doubling): 0 when out of
+ * memory, *p and *cap unchanged then. */
+static int grow(void **p, size_t *cap, size_t n, size_t sz)
+{
+    if (n <= *cap)
+        return 1;
+    size_t nc = *cap * 2 > n ? *cap * 2 : n;
+    void *q = ump_realloc_array(*p, nc, sz);
+    if (!q)
+        return 0;
+    *p = q;
+    *cap = nc;
+    return 1;
+}
+
+ump_status vor_work_create(vor_work **out, ump_err *err)
+{
+    *out = NULL;
+    vor_work *w = ump_alloc_array(1, sizeof *w);
+    UMP_CHECK(w, err, UMP_ERR_NOMEM, "vor: out of memory for a workspace");
+    memset(w, 0, sizeof *w);
+    w->qh = ump_alloc_array(1, sizeof *w->qh);
+    w->ferr = w->qh ? fmemopen(w->ebuf, sizeof w->ebuf, "w") : NULL;
+    if (!w->ferr) {
+        vor_work_free(&w);
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "vor: out of memory for a workspace");
+    }
+    *out = w;
+    return UMP_OK;
+}
+
+void vor_work_free(vor_work **pw)
+{
+    vor_work *w = *pw;
+    if (!w)
+        return;
+    if (w->ferr)
+        fclose(w->ferr);
+    free(w->qh);
+    free(w->pts);
+    free(w->h);
+    free(w->sub);
+    free(w->sxy);
+    free(w->gstart);
+    free(w->gidx);
+    free(w);
+    *pw = NULL;
+}
 
 /* The input, its centroid and its scale: s = 2^-e with the cloud's
  * half-extent in [2^(e-1), 2^e). Multiplying by a power of two is exact, so
@@ -144,44 +220,34 @@ static int facet_triple(qhT *qh, facetT *facet, const vor_cloud *cl, size_t t[3]
     return nv == 3; /* Qt: every facet is a triangle */
 }
 
-/* Collect the qualifying circles of the finished triangulation, unsorted. */
-static ump_status collect(qhT *qh, const vor_cloud *cl, double rmin, vor_hole **holes, size_t *nholes,
-                          ump_err *err)
+/* Collect the qualifying circles of the finished triangulation, unsorted,
+ * into w->h. */
+static ump_status collect(qhT *qh, vor_work *w, const vor_cloud *cl, double rmin, size_t *nholes, ump_err *err)
 {
     facetT *facet;
     size_t t[3], cap = 0, m = 0;
     FORALLfacets { /* an upper bound; one pass over the vertices below */
         cap++;
     }
-    if (cap == 0)
-        return UMP_OK;
-    vor_hole *h = ump_alloc_array(cap, sizeof *h);
-    UMP_CHECK(h, err, UMP_ERR_NOMEM, "vor: out of memory for %zu Delaunay triangles", cap);
+    UMP_CHECK(grow((void **)&w->h, &w->hcap, cap, sizeof *w->h), err, UMP_ERR_NOMEM,
+              "vor: out of memory for %zu Delaunay triangles", cap);
     FORALLfacets {
-        if (facet_triple(qh, facet, cl, t) && circumcircle(cl, t, &h[m]) && h[m].r > rmin)
+        if (facet_triple(qh, facet, cl, t) && circumcircle(cl, t, &w->h[m]) && w->h[m].r > rmin)
             m++;
     }
-    if (m == 0) {
-        free(h);
-        return UMP_OK;
-    }
-    *holes = h;
     *nholes = m;
     return UMP_OK;
 }
 
-/* Sort the list (hole_cmp) and give back its unused tail. */
-static void sort_holes(vor_hole **holes, size_t m)
+/* Sort the list (hole_cmp). */
+static void sort_holes(vor_hole *holes, size_t m)
 {
-    if (m == 0)
-        return;
-    qsort(*holes, m, sizeof **holes, hole_cmp);
-    vor_hole *hs = ump_realloc_array(*holes, m, sizeof **holes);
-    if (hs)
-        *holes = hs; /* shrinking cannot really fail; keep the old block if it does */
+    if (m > 1)
+        qsort(holes, m, sizeof *holes, hole_cmp);
 }
 
-/* qhull's first error line ("QH6xxx ..."), else its first line, from buf. */
+/* qhull's first error line ("QH6xxx ..."), else its first line, from the
+ * NUL-terminated buf. */
 static void qhull_message(const char *buf, const char **msg, int *len)
 {
     const char *s = NULL;
@@ -248,11 +314,10 @@ static ump_status cloud_shape(vor_cloud *c, int *flat, ump_err *err)
     return UMP_OK;
 }
 
-/* The qualifying circles of the whole cloud, unsorted (vor_holes). */
-static ump_status all_holes(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
-                            vor_hole **holes, size_t *nholes, ump_err *err)
+/* The qualifying circles of the whole cloud, unsorted, into w->h. */
+static ump_status all_holes(vor_work *w, const double *x, const double *y, size_t n, const unsigned char *mask,
+                            double rmin, size_t *nholes, ump_err *err)
 {
-    *holes = NULL;
     *nholes = 0;
     if (n < 3)
         return UMP_OK;
@@ -264,68 +329,90 @@ static ump_status all_holes(const double *x, const double *y, size_t n, const un
     if (flat)
         return UMP_OK;
 
-    coordT *pts = ump_alloc_array(2 * n, sizeof *pts);
-    qhT *qh = ump_alloc_array(1, sizeof *qh); /* ~ 9 kB: not on a thread's stack */
-    char *ebuf = NULL;
-    size_t elen = 0;
-    FILE *ferr = (pts && qh) ? open_memstream(&ebuf, &elen) : NULL;
-    if (!ferr) {
-        free(pts);
-        free(qh);
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "vor: out of memory for %zu points", n);
-    }
+    UMP_CHECK(grow((void **)&w->pts, &w->ptcap, 2 * n, sizeof *w->pts), err, UMP_ERR_NOMEM,
+              "vor: out of memory for %zu points", n);
+    coordT *pts = w->pts;
     for (size_t i = 0; i < n; i++) { /* centred and scaled to [-1, 1]: conditioning */
         pts[2 * i] = (x[i] - cl.cx) * cl.s;
         pts[2 * i + 1] = (y[i] - cl.cy) * cl.s;
     }
     char opts[] = VOR_QHULL_OPTS; /* qh_new_qhull takes a non-const string */
-    qh_zero(qh, ferr);
-    int code = qh_new_qhull(qh, 2, (int)n, pts, False, opts, NULL, ferr);
+    qhT *qh = w->qh;
+    rewind(w->ferr); /* and clears its error flag: a full buffer of a last failure */
+    qh_zero(qh, w->ferr);
+    int code = qh_new_qhull(qh, 2, (int)n, pts, False, opts, NULL, w->ferr);
     ump_status st = UMP_OK;
     if (code == qh_ERRnone)
-        st = collect(qh, &cl, rmin, holes, nholes, err);
+        st = collect(qh, w, &cl, rmin, nholes, err);
     int curlong, totlong;
     qh_freeqhull(qh, !qh_ALL);
     qh_memfreeshort(qh, &curlong, &totlong);
-    free(qh);
-    free(pts);
-    fclose(ferr); /* ebuf is now NUL-terminated (or NULL if the stream failed) */
 
     if (code == qh_ERRsingular) {
         /* Flat at qhull's precision (nearly collinear): no triangles. */
+        *nholes = 0;
         st = UMP_OK;
     } else if (code != qh_ERRnone) {
+        /* the text written: at most the buffer less its terminating NUL */
+        fflush(w->ferr);
+        long end = ftell(w->ferr);
+        size_t len0 = end < 0 ? 0 : UMP_MIN((size_t)end, sizeof w->ebuf - 1);
+        w->ebuf[len0] = '\0';
         const char *msg;
         int len;
-        qhull_message(ebuf, &msg, &len);
+        qhull_message(w->ebuf, &msg, &len);
         st = UMP_FAIL(err, code == qh_ERRmem ? UMP_ERR_NOMEM : UMP_ERR_INPUT,
                       "vor: qhull failed (exit code %d) on %zu points: %.*s", code, n, len, msg);
     }
-    free(ebuf);
     return st;
+}
+
+/* A copy of the workspace's first m holes for the allocating interfaces. */
+static ump_status copy_out(const vor_work *w, size_t m, vor_hole **holes, size_t *nholes, ump_err *err)
+{
+    *holes = NULL;
+    *nholes = 0;
+    if (m == 0)
+        return UMP_OK;
+    vor_hole *h = ump_alloc_array(m, sizeof *h);
+    UMP_CHECK(h, err, UMP_ERR_NOMEM, "vor: out of memory for %zu holes", m);
+    memcpy(h, w->h, m * sizeof *h);
+    *holes = h;
+    *nholes = m;
+    return UMP_OK;
 }
 
 ump_status vor_holes(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
                      vor_hole **holes, size_t *nholes, ump_err *err)
 {
-    UMP_CALL(all_holes(x, y, n, mask, rmin, holes, nholes, err));
-    sort_holes(holes, *nholes);
-    return UMP_OK;
+    *holes = NULL;
+    *nholes = 0;
+    vor_work *w;
+    UMP_CALL(vor_work_create(&w, err));
+    size_t m = 0;
+    ump_status st = all_holes(w, x, y, n, mask, rmin, &m, err);
+    if (st == UMP_OK) {
+        sort_holes(w->h, m);
+        st = copy_out(w, m, holes, nholes, err);
+    }
+    vor_work_free(&w);
+    return st;
 }
 
 /* ---- vor_holes_inside: the Delaunay triangulation of the candidates only ---- */
 
-/* Points binned on a grid of square cells of side g (counting sort). */
+/* Points binned on a grid of square cells of side g (counting sort); the
+ * arrays are the workspace's. */
 typedef struct vor_grid {
     double x0, y0, g;
     long nx, ny;
-    size_t *start; /* [nx ny + 1] */
-    size_t *idx;   /* [n] point numbers, by cell */
+    const size_t *start; /* [nx ny + 1] */
+    const size_t *idx;   /* [n] point numbers, by cell */
 } vor_grid;
 
-/* 0: too many cells for the points (a scattered cloud), nothing allocated. */
-static ump_status grid_build(vor_grid *G, const double *x, const double *y, size_t n, double g, int *ok,
-                             ump_err *err)
+/* *ok 0: too many cells for the points (a scattered cloud), G unset. */
+static ump_status grid_build(vor_work *w, vor_grid *G, const double *x, const double *y, size_t n, double g,
+                             int *ok, ump_err *err)
 {
     *ok = 0;
     double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
@@ -338,28 +425,27 @@ static ump_status grid_build(vor_grid *G, const double *x, const double *y, size
         return UMP_OK;
     G->x0 = x0, G->y0 = y0, G->g = g, G->nx = (long)cx, G->ny = (long)cy;
     size_t nc = (size_t)G->nx * (size_t)G->ny;
-    G->start = ump_alloc_array(nc + 1, sizeof *G->start);
-    G->idx = ump_alloc_array(n ? n : 1, sizeof *G->idx);
-    if (!G->start || !G->idx) {
-        free(G->start);
-        free(G->idx);
-        return UMP_FAIL(err, UMP_ERR_NOMEM, "vor: out of memory for a grid of %zu cells", nc);
-    }
-    memset(G->start, 0, sizeof *G->start * (nc + 1));
+    UMP_CHECK(grow((void **)&w->gstart, &w->gcap, nc + 1, sizeof *w->gstart) &&
+                  grow((void **)&w->gidx, &w->icap, n, sizeof *w->gidx),
+              err, UMP_ERR_NOMEM, "vor: out of memory for a grid of %zu cells", nc);
+    size_t *start = w->gstart, *idx = w->gidx;
+    memset(start, 0, sizeof *start * (nc + 1));
     for (size_t i = 0; i < n; i++) {
         long bx = (long)((x[i] - x0) / g), by = (long)((y[i] - y0) / g);
-        G->start[(size_t)(by * G->nx + bx) + 1]++;
+        start[(size_t)(by * G->nx + bx) + 1]++;
     }
     for (size_t c = 0; c < nc; c++)
-        G->start[c + 1] += G->start[c];
+        start[c + 1] += start[c];
     for (size_t i = 0; i < n; i++) { /* in increasing i within a cell */
         long bx = (long)((x[i] - x0) / g), by = (long)((y[i] - y0) / g);
         size_t c = (size_t)(by * G->nx + bx);
-        G->idx[G->start[c]++] = i;
+        idx[start[c]++] = i;
     }
     for (size_t c = nc; c > 0; c--)
-        G->start[c] = G->start[c - 1];
-    G->start[0] = 0;
+        start[c] = start[c - 1];
+    start[0] = 0;
+    G->start = start;
+    G->idx = idx;
     *ok = 1;
     return UMP_OK;
 }
@@ -462,8 +548,9 @@ static int centre_inside(const double *x, const double *y, const vor_hole *o, do
     return l1 >= -inside && l2 >= -inside && l3 >= -inside;
 }
 
-ump_status vor_holes_inside(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
-                            double inside, vor_hole **holes, size_t *nholes, ump_err *err)
+ump_status vor_work_holes_inside(vor_work *w, const double *x, const double *y, size_t n,
+                                 const unsigned char *mask, double rmin, double inside, const vor_hole **holes,
+                                 size_t *nholes, ump_err *err)
 {
     *holes = NULL;
     *nholes = 0;
@@ -476,64 +563,56 @@ ump_status vor_holes_inside(const double *x, const double *y, size_t n, const un
                   x[i], y[i]);
     vor_grid G = {0};
     int ok;
-    UMP_CALL(grid_build(&G, x, y, n, 2 * rmin, &ok, err));
-    vor_hole *h = NULL;
-    size_t m = 0;
+    UMP_CALL(grid_build(w, &G, x, y, n, 2 * rmin, &ok, err));
+    size_t m = 0, k = 0;
     if (!ok) {
         /* scattered: the whole cloud, then the same filter */
-        UMP_CALL(all_holes(x, y, n, mask, rmin, &h, &m, err));
-        size_t k = 0;
+        UMP_CALL(all_holes(w, x, y, n, mask, rmin, &m, err));
         for (size_t q = 0; q < m; q++)
-            if (centre_inside(x, y, &h[q], inside))
-                h[k++] = h[q];
-        if (k == 0)
-            free(h);
-        else
-            sort_holes(&h, k);
-        *holes = k ? h : NULL;
-        *nholes = k;
-        return UMP_OK;
-    }
-    /* the candidates, kept by mask */
-    size_t *sub = ump_alloc_array(n, sizeof *sub);
-    double *sx = ump_alloc_array(n, sizeof *sx), *sy = ump_alloc_array(n, sizeof *sy);
-    ump_status st = UMP_OK;
-    if (!sub || !sx || !sy) {
-        st = UMP_FAIL(err, UMP_ERR_NOMEM, "vor: out of memory for %zu points", n);
-        goto out;
-    }
-    size_t ns = 0;
-    for (size_t i = 0; i < n; i++)
-        if ((!mask || mask[i]) && can_be_vertex(&G, x, y, i, rmin)) {
-            sub[ns] = i;
-            sx[ns] = x[i];
-            sy[ns] = y[i];
-            ns++;
-        }
-    st = all_holes(sx, sy, ns, NULL, rmin, &h, &m, err);
-    if (st != UMP_OK)
-        goto out;
-    size_t k = 0;
-    for (size_t q = 0; q < m; q++) {
-        vor_hole o = h[q];
-        for (int t = 0; t < 3; t++)
-            o.v[t] = sub[o.v[t]]; /* ascending still: sub is increasing */
-        if (centre_inside(x, y, &o, inside) && !disk_holds_point(&G, x, y, &o))
-            h[k++] = o;
-    }
-    if (k == 0) {
-        free(h);
-        h = NULL;
+            if (centre_inside(x, y, &w->h[q], inside))
+                w->h[k++] = w->h[q];
     } else {
-        sort_holes(&h, k);
+        /* the candidates, kept by mask */
+        UMP_CHECK(grow((void **)&w->sub, &w->scap, n, sizeof *w->sub) &&
+                      grow((void **)&w->sxy, &w->xycap, 2 * n, sizeof *w->sxy),
+                  err, UMP_ERR_NOMEM, "vor: out of memory for %zu points", n);
+        size_t *sub = w->sub;
+        double *sx = w->sxy, *sy = w->sxy + n;
+        size_t ns = 0;
+        for (size_t i = 0; i < n; i++)
+            if ((!mask || mask[i]) && can_be_vertex(&G, x, y, i, rmin)) {
+                sub[ns] = i;
+                sx[ns] = x[i];
+                sy[ns] = y[i];
+                ns++;
+            }
+        UMP_CALL(all_holes(w, sx, sy, ns, NULL, rmin, &m, err));
+        for (size_t q = 0; q < m; q++) {
+            vor_hole o = w->h[q];
+            for (int t = 0; t < 3; t++)
+                o.v[t] = sub[o.v[t]]; /* ascending still: sub is increasing */
+            if (centre_inside(x, y, &o, inside) && !disk_holds_point(&G, x, y, &o))
+                w->h[k++] = o;
+        }
     }
-    *holes = h;
+    sort_holes(w->h, k);
+    *holes = k ? w->h : NULL;
     *nholes = k;
-out:
-    free(sub);
-    free(sx);
-    free(sy);
-    free(G.start);
-    free(G.idx);
+    return UMP_OK;
+}
+
+ump_status vor_holes_inside(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
+                            double inside, vor_hole **holes, size_t *nholes, ump_err *err)
+{
+    *holes = NULL;
+    *nholes = 0;
+    vor_work *w;
+    UMP_CALL(vor_work_create(&w, err));
+    const vor_hole *h;
+    size_t m = 0;
+    ump_status st = vor_work_holes_inside(w, x, y, n, mask, rmin, inside, &h, &m, err);
+    if (st == UMP_OK)
+        st = copy_out(w, m, holes, nholes, err);
+    vor_work_free(&w);
     return st;
 }

@@ -22,8 +22,16 @@
  *   - triangles flatter than VOR_FLAT (twice the area below VOR_FLAT times
  *     the longest edge squared) are skipped: their circumcentre is not
  *     numerically meaningful.
- * Reentrant: no global state (one qhull instance per call), so threads may
- * call it concurrently. Prints nothing.
+ * Reentrant: no global state (one qhull instance per workspace), so
+ * threads may call it concurrently, each with its own workspace. Prints
+ * nothing.
+ *
+ * Memory: vor_work_holes_inside works in a vor_work that only grows, so a
+ * caller that keeps one (the meshless solver, at every step) allocates
+ * nothing of ours once the sizes have been reached; qhull's own blocks are
+ * allocated and freed inside each triangulation (vor.c). vor_holes and
+ * vor_holes_inside are the one-shot forms: a workspace of their own, the
+ * result copied out.
  */
 #ifndef UMPPM_VOR_H
 #define UMPPM_VOR_H
@@ -68,5 +76,21 @@ ump_status vor_holes(const double *x, const double *y, size_t n, const unsigned 
  * triangulated whole. Errors as vor_holes', and a bad rmin or inside. */
 ump_status vor_holes_inside(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
                             double inside, vor_hole **holes, size_t *nholes, ump_err *err);
+
+/* The search's arrays (qhull's input and its state, the holes, a grid and
+ * the candidates), kept between calls. */
+typedef struct vor_work vor_work;
+
+/* An empty workspace (its arrays grow at the first calls). UMP_ERR_NOMEM. */
+ump_status vor_work_create(vor_work **w, ump_err *err);
+/* Frees the workspace and sets *w to NULL; NULL is a no-op. */
+void vor_work_free(vor_work **w);
+
+/* vor_holes_inside in the workspace w: *holes points into w, valid until
+ * the next call with w or vor_work_free (NULL when *nholes = 0). The same
+ * holes, in the same order, as vor_holes_inside; the same errors. */
+ump_status vor_work_holes_inside(vor_work *w, const double *x, const double *y, size_t n,
+                                 const unsigned char *mask, double rmin, double inside, const vor_hole **holes,
+                                 size_t *nholes, ump_err *err);
 
 #endif

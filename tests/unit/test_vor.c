@@ -7,7 +7,8 @@
  * coincident, non-finite), concurrent calls, and silence of qhull;
  * vor_holes_inside (the candidates only) against vor_holes filtered by the
  * same centre-inside test on lattices, random and jittered clouds, masks
- * and a scattered cloud.
+ * and a scattered cloud; vor_work_holes_inside's workspace over clouds of
+ * every kind: the same holes, and no allocation of ours once grown.
  */
 #include "testutil.h"
 #include "umppm/ump.h"
@@ -552,6 +553,79 @@ static void test_inside_matches(void **state)
     assert_int_equal(nh, 0);
 }
 
+/* One workspace over clouds of different sizes and kinds (random, a
+ * lattice, a masked jittered lattice, a scattered cloud, a refused input,
+ * a cloud too small): the same holes, bit for bit, as the one-shot
+ * vor_holes_inside; and once the workspace has seen the largest of them,
+ * none of our allocations (ump_alloc_fail_after(0) makes one fail). */
+static void test_workspace(void **state)
+{
+    (void)state;
+    enum { C = 6, N = 2000 };
+    static double x[C][N], y[C][N];
+    static unsigned char mask[N];
+    static long idx[NX][NY];
+    size_t n[C];
+    double rmin[C];
+    const unsigned char *mk[C] = {0};
+    random_cloud(x[0], y[0], N, 11), n[0] = N, rmin[0] = 1.0 / sqrt((double)N);
+    n[1] = lattice(x[1], y[1], idx), rmin[1] = 0.9;
+    tu_rng_seed(77);
+    n[2] = 0;
+    for (int j = 0; j < 40; j++)
+        for (int i = 0; i < 40; i++) {
+            if (tu_rnd() < 0.03)
+                continue;
+            x[2][n[2]] = i + 0.6 * (tu_rnd() - 0.5);
+            y[2][n[2]] = j + 0.6 * (tu_rnd() - 0.5);
+            mask[n[2]] = tu_rnd() < 0.8;
+            n[2]++;
+        }
+    mk[2] = mask, rmin[2] = 0.9;
+    random_cloud(x[3], y[3], 400, 7), n[3] = 400, rmin[3] = 0.05; /* scattered: the whole cloud */
+    for (size_t i = 200; i < 400; i++)
+        x[3][i] += 1e4;
+    random_cloud(x[4], y[4], 300, 5), n[4] = 300, rmin[4] = 0.05;
+    y[4][17] = NAN; /* refused */
+    random_cloud(x[5], y[5], 2, 3), n[5] = 2, rmin[5] = 0.05; /* too few: no holes */
+
+    vor_hole *ref[C];
+    size_t nref[C];
+    ump_status sref[C];
+    ump_err err;
+    for (int c = 0; c < C; c++) {
+        ref[c] = NULL;
+        sref[c] = vor_holes_inside(x[c], y[c], n[c], mk[c], rmin[c], 0.05, &ref[c], &nref[c], &err);
+    }
+    assert_true(sref[0] == UMP_OK && nref[0] > 20 && sref[1] == UMP_OK && nref[1] == 2 && sref[2] == UMP_OK &&
+                nref[2] > 0 && sref[3] == UMP_OK && nref[3] > 0 && sref[4] == UMP_ERR_INPUT && sref[5] == UMP_OK &&
+                nref[5] == 0);
+    vor_work *w = NULL;
+    assert_int_equal(vor_work_create(&w, &err), UMP_OK);
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 1)
+            ump_alloc_fail_after(0);
+        for (int c = 0; c < C; c++) {
+            const vor_hole *h = NULL;
+            size_t nh = 99;
+            ump_status st = vor_work_holes_inside(w, x[c], y[c], n[c], mk[c], rmin[c], 0.05, &h, &nh, &err);
+            if (st != sref[c])
+                fail_msg("cloud %d, pass %d: status %d (%s), expected %d", c, pass, (int)st, err.msg, (int)sref[c]);
+            assert_int_equal(nh, st == UMP_OK ? nref[c] : 0);
+            if (nh == 0)
+                assert_null(h);
+            else
+                assert_memory_equal(h, ref[c], nh * sizeof *h);
+        }
+        ump_alloc_fail_after(-1);
+    }
+    vor_work_free(&w);
+    assert_null(w);
+    vor_work_free(&w); /* NULL: a no-op */
+    for (int c = 0; c < C; c++)
+        free(ref[c]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -563,6 +637,7 @@ int main(void)
         cmocka_unit_test(test_threads),
         cmocka_unit_test(test_silent),
         cmocka_unit_test(test_inside_matches),
+        cmocka_unit_test(test_workspace),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
