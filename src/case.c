@@ -457,6 +457,9 @@ static const int buoyancy_values[] = {0, 1};
 static const char *const aniso_words[] = {"auto", "yes", "no", "on", "off", "true", "false",
                                           "y", "n", "t", "f", "none", NULL};
 static const int aniso_values[] = {-1, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 0};
+/* interpolationError: auto (-1, decided by the mesh and the flow, app.c) */
+static const char *const qerr_words[] = {"auto", "transpose", "gradient", NULL};
+static const int qerr_values[] = {-1, 1, 0};
 static const char *const refill_words[] = {"auto", "centroid", "carried", NULL};
 static const int refill_values[] = {-1, 0, 1};
 static const char *const refill_weight_words[] = {"increment", "distance", NULL};
@@ -523,6 +526,9 @@ static const case_option umppm_options[] = {
     {"anisotropicCells", CASE_OPT_CHOICE, "auto", -1, aniso_words, aniso_values, UM_NORANGE,
      "stretched-cell operators; auto: yes if a cell is stretched beyond 20:1",
      UM_FIELD(anisotropic)},
+    {"interpolationError", CASE_OPT_CHOICE, "auto", -1, qerr_words, qerr_values, UM_NORANGE,
+     "its pressure to particles by the fits' transpose or Eq. 10's gradient",
+     UM_FIELD(q_transpose)},
     {"buoyancy", CASE_OPT_CHOICE, "balanced", 1, buoyancy_words, buoyancy_values, UM_NORANGE,
      "buoyant: force in the predictor less its balancing pressure",
      UM_FIELD(buoyancy_balanced)},

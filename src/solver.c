@@ -344,6 +344,7 @@ void sol_default_settings(sol_settings *s)
     s->positive = 1;
     s->bounded_fits = 1;
     s->anisotropic = 0;
+    s->q_transpose = 0;
     s->t_start = 0;
 }
 
@@ -2852,8 +2853,9 @@ static ump_status step9_pressure(sol *S, double dt, ump_err *err)
 
 /* ---- Step 10: correction ----------------------------------------------------- */
 
-/* anisotropicCells: the interpolation error's pressure q by the transpose
- * of the fits (docs/METHOD.md section 8, "Walls in the correction" (f)).
+/* q_transpose (interpolationError transpose; on with anisotropicCells by
+ * default): the interpolation error's pressure q by the transpose of the
+ * fits (docs/METHOD.md section 8, "Walls in the correction" (f)).
  * Step 9's p = p_d + q, q the potential of
  * D eps / dt (interpolation_error). Eq. 10 gives every particle the whole
  * -dt grad q at its position, yet a particle that hardly enters its cells'
@@ -3012,8 +3014,8 @@ static ump_status step10_correct(sol *S, double dt, sol_stats *stats, ump_err *e
         phif = st->pfphi;
     }
     int walls = walls_zero_gradient(su);
-    /* walls: Eq. 10 with p_d, and q by the transpose of the fits */
-    int tq = walls && st->split;
+    /* q_transpose: Eq. 10 with p_d, and q by the transpose of the fits */
+    int tq = su->set.q_transpose && st->split;
     const double *pg = phi;
     if (tq) {
         UMP_CALL(transpose_q(S, dt, err));
@@ -3033,8 +3035,9 @@ static ump_status step10_correct(sol *S, double dt, sol_stats *stats, ump_err *e
         P->u[i] = st->us[i] - k * st->gpx[i];
         P->v[i] = st->vs[i] - k * st->gpy[i];
         if (tq) {
-            P->u[i] += kw[i] * st->qx[i];
-            P->v[i] += kw[i] * st->qy[i];
+            double kq = kw ? kw[i] : 1.0;
+            P->u[i] += kq * st->qx[i];
+            P->v[i] += kq * st->qy[i];
         }
     }
     /* r* and its bins (Step 8's) are kept for refill_up */
@@ -3418,9 +3421,9 @@ ump_status sol_step(sol *S, double dt, sol_stats *stats, ump_err *err)
     if (su->set.p_theta > 0)
         path_pressure_kick(S, stats);
     stage_mark(&clk, stats, SOL_STAGE_BALANCE);
-    /* q: for the pressure written, and with walls_zero_gradient for the
-     * correction (transpose_q) at every step */
-    int split = (st->want_fields || walls_zero_gradient(su)) && st->have_flux;
+    /* q: for the pressure written, and with q_transpose for the correction
+     * (transpose_q) at every step */
+    int split = (st->want_fields || su->set.q_transpose) && st->have_flux;
     st->split = split;
     if (split) {
         interpolation_error(S, dt);

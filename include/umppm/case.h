@@ -102,6 +102,8 @@ typedef struct case_umppm {
     double mls_support;          /* mlsSupport: 2 (default) or 1..4 cell extents; 0: Eq. 35's scales */
     double p_theta;              /* pressureTheta: 0 .. 0.5; -1: auto (default) */
     int anisotropic;             /* anisotropicCells: -1 auto (default), 0 or 1 */
+    int q_transpose;             /* interpolationError: 1 transpose, 0 gradient,
+                                    -1 auto (default) */
     int positive_rows;           /* positiveRows: default 1 */
     int bounded_fits;            /* boundedFits: default 1 */
     double max_velocity;         /* maxVelocity: divergence bound on |U| of

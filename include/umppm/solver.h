@@ -95,6 +95,14 @@ typedef struct sol_settings {
                                 gradients (default 0: Eq. 26, plain CPM,
                                 Eqs. 33-34; the application turns it on for
                                 meshes stretched beyond 20:1) */
+    int q_transpose;         /* interpolationError transpose: the interpolation
+                                error's pressure q (the potential of the
+                                particles' face-fit error, part of Step 9's p)
+                                given to the particles by the transpose of Step
+                                8's face fits, the rest of p by Eq. 10
+                                (docs/METHOD.md section 8, "The interpolation
+                                error by the transpose of the fits"); 0: the
+                                whole p by Eq. 10 ([NSH16]; the default) */
     int bounded_fits;        /* boundedFits: an MLS value fit or a carried refill
                                 is kept within the range of its samples widened
                                 by SOL_FIT_MARGIN of it (default 1; docs/METHOD.md

@@ -578,6 +578,7 @@ static void assert_umppm_equal(const case_umppm *a, const case_umppm *b)
     assert_int_equal(a->positive_rows, b->positive_rows);
     assert_int_equal(a->bounded_fits, b->bounded_fits);
     assert_int_equal(a->refill_increment, b->refill_increment);
+    assert_int_equal(a->q_transpose, b->q_transpose);
 }
 
 /* The table itself: keys unique, field sizes match the types, defaults are
@@ -587,7 +588,7 @@ static void test_umppm_table(void **state)
     (void)state;
     size_t n;
     const case_option *t = case_umppm_options(&n);
-    assert_int_equal(n, 21);
+    assert_int_equal(n, 22);
     for (size_t i = 0; i < n; i++) {
         const case_option *o = &t[i];
         assert_non_null(o->key);
@@ -788,6 +789,14 @@ static void test_umppm_values(void **state)
         if (case_read_umppm(d, &u, &err) != UMP_OK)
             fail_msg("anisotropicCells %s: %s", an[i].w, err.msg);
         assert_int_equal(u.anisotropic, an[i].v);
+    }
+    /* interpolationError: auto (-1), transpose (1) or gradient (0) */
+    struct { const char *w; int v; } qe[] = {{"auto", -1}, {"transpose", 1}, {"gradient", 0}};
+    for (size_t i = 0; i < sizeof qe / sizeof qe[0]; i++) {
+        write_one(d, "interpolationError", qe[i].w);
+        if (case_read_umppm(d, &u, &err) != UMP_OK)
+            fail_msg("interpolationError %s: %s", qe[i].w, err.msg);
+        assert_int_equal(u.q_transpose, qe[i].v);
     }
     /* a pattern key reads as OpenFOAM's (and is not an unknown key) */
     write_umppm(d, "    \"alph.*\" 0.2;\n");
