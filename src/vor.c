@@ -70,25 +70,24 @@ struct vor_work {
     size_t hcap;
     size_t *sub;             /* [scap] the candidates (vor_work_holes_inside) */
     size_t scap;
-    double *sxy;             /* [2 xycap] their coordinates: x, then y from xycap */
+    double *sxy;             /* [xycap] their coordinates: x[n], then y[n] */
     size_t xycap;
     size_t *gstart, *gidx;   /* [gcap + 1], [icap] the grid */
     size_t gcap, icap;
 };
 
-/* Grow *p to at least n elements of size sz (doubling): 0 when out of
- * memory, *p and *cap unchanged then. */
-static int grow(void **p, size_t *cap, size_t n, size_t sz)
+/* p (capacity *cap elements of size sz) grown to at least n elements,
+ * doubling: the new block, *cap updated; NULL when out of memory, p then
+ * still valid and *cap unchanged. */
+static void *grow(void *p, size_t *cap, size_t n, size_t sz)
 {
-    if (n <= *cap)
-        return 1;
-    size_t nc = *cap * 2 > n ? *cap * 2 : n;
-    void *q = ump_realloc_array(*p, nc, sz);
-    if (!q)
-        return 0;
-    *p = q;
-    *cap = nc;
-    return 1;
+    if (p && n <= *cap)
+        return p;
+    size_t nc = *cap * 2 > n ? *cap * 2 : n ? n : 1;
+    void *q = ump_realloc_array(p, nc, sz);
+    if (q)
+        *cap = nc;
+    return q;
 }
 
 ump_status vor_work_create(vor_work **out, ump_err *err)
@@ -229,8 +228,9 @@ static ump_status collect(qhT *qh, vor_work *w, const vor_cloud *cl, double rmin
     FORALLfacets { /* an upper bound; one pass over the vertices below */
         cap++;
     }
-    UMP_CHECK(grow((void **)&w->h, &w->hcap, cap, sizeof *w->h), err, UMP_ERR_NOMEM,
-              "vor: out of memory for %zu Delaunay triangles", cap);
+    vor_hole *h = grow(w->h, &w->hcap, cap, sizeof *h);
+    UMP_CHECK(h, err, UMP_ERR_NOMEM, "vor: out of memory for %zu Delaunay triangles", cap);
+    w->h = h;
     FORALLfacets {
         if (facet_triple(qh, facet, cl, t) && circumcircle(cl, t, &w->h[m]) && w->h[m].r > rmin)
             m++;
@@ -329,9 +329,9 @@ static ump_status all_holes(vor_work *w, const double *x, const double *y, size_
     if (flat)
         return UMP_OK;
 
-    UMP_CHECK(grow((void **)&w->pts, &w->ptcap, 2 * n, sizeof *w->pts), err, UMP_ERR_NOMEM,
-              "vor: out of memory for %zu points", n);
-    coordT *pts = w->pts;
+    coordT *pts = grow(w->pts, &w->ptcap, 2 * n, sizeof *pts);
+    UMP_CHECK(pts, err, UMP_ERR_NOMEM, "vor: out of memory for %zu points", n);
+    w->pts = pts;
     for (size_t i = 0; i < n; i++) { /* centred and scaled to [-1, 1]: conditioning */
         pts[2 * i] = (x[i] - cl.cx) * cl.s;
         pts[2 * i + 1] = (y[i] - cl.cy) * cl.s;
@@ -425,10 +425,12 @@ static ump_status grid_build(vor_work *w, vor_grid *G, const double *x, const do
         return UMP_OK;
     G->x0 = x0, G->y0 = y0, G->g = g, G->nx = (long)cx, G->ny = (long)cy;
     size_t nc = (size_t)G->nx * (size_t)G->ny;
-    UMP_CHECK(grow((void **)&w->gstart, &w->gcap, nc + 1, sizeof *w->gstart) &&
-                  grow((void **)&w->gidx, &w->icap, n, sizeof *w->gidx),
-              err, UMP_ERR_NOMEM, "vor: out of memory for a grid of %zu cells", nc);
-    size_t *start = w->gstart, *idx = w->gidx;
+    size_t *start = grow(w->gstart, &w->gcap, nc + 1, sizeof *start);
+    if (start)
+        w->gstart = start;
+    size_t *idx = start ? grow(w->gidx, &w->icap, n, sizeof *idx) : NULL;
+    UMP_CHECK(idx, err, UMP_ERR_NOMEM, "vor: out of memory for a grid of %zu cells", nc);
+    w->gidx = idx;
     memset(start, 0, sizeof *start * (nc + 1));
     for (size_t i = 0; i < n; i++) {
         long bx = (long)((x[i] - x0) / g), by = (long)((y[i] - y0) / g);
@@ -573,11 +575,13 @@ ump_status vor_work_holes_inside(vor_work *w, const double *x, const double *y, 
                 w->h[k++] = w->h[q];
     } else {
         /* the candidates, kept by mask */
-        UMP_CHECK(grow((void **)&w->sub, &w->scap, n, sizeof *w->sub) &&
-                      grow((void **)&w->sxy, &w->xycap, 2 * n, sizeof *w->sxy),
-                  err, UMP_ERR_NOMEM, "vor: out of memory for %zu points", n);
-        size_t *sub = w->sub;
-        double *sx = w->sxy, *sy = w->sxy + n;
+        size_t *sub = grow(w->sub, &w->scap, n, sizeof *sub);
+        if (sub)
+            w->sub = sub;
+        double *sx = sub ? grow(w->sxy, &w->xycap, 2 * n, sizeof *sx) : NULL;
+        UMP_CHECK(sx, err, UMP_ERR_NOMEM, "vor: out of memory for %zu points", n);
+        w->sxy = sx;
+        double *sy = sx + n;
         size_t ns = 0;
         for (size_t i = 0; i < n; i++)
             if ((!mask || mask[i]) && can_be_vertex(&G, x, y, i, rmin)) {
