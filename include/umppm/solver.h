@@ -100,7 +100,8 @@ typedef struct sol_settings {
                                 particles' face-fit error, part of Step 9's p)
                                 given to the particles by the transpose of Step
                                 8's face fits, the rest of p by Eq. 10
-                                (docs/METHOD.md section 8, "The interpolation
+                                (docs/METHOD.md section 8, "Walls in the
+                                correction" (f); README "The interpolation
                                 error by the transpose of the fits"); 0: the
                                 whole p by Eq. 10 ([NSH16]; the default) */
     int bounded_fits;        /* boundedFits: an MLS value fit or a carried refill
