@@ -284,13 +284,9 @@ static double p_theta_auto(const app *a, int walled)
  * 0.0162 against 0.0066 / 0.0059 at 0.005) and at the elbow's quarter
  * step (inlet pressures -0.11 / 1.00 against 0.44 / 2.04; converged 0.466
  * / 2.359), and on the 40^2 quads one step of the right wall's jet reached
- * 1.126 x the lid speed: so not by default. With buoyancy source the
- * anisotropic walls are off (solver.c walls_zero_gradient), and so is this. */
-static int q_transpose_auto(const app *a)
-{
-    return app_anisotropic(a) && (!a->bu.on || a->um.buoyancy_balanced); /* solver.c walls_zero_gradient */
-}
-
+ * 1.126 x the lid speed: so not by default. The solver resolves auto
+ * (sol_q_transpose: with buoyancy source the anisotropic walls are off, and
+ * so is this). */
 static ump_status settings(const app *a, sol_settings *s, ump_err *err)
 {
     sol_default_settings(s);
@@ -329,7 +325,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->positive = a->um.positive_rows;
     s->bounded_fits = a->um.bounded_fits;
     s->anisotropic = app_anisotropic(a);
-    s->q_transpose = a->um.q_transpose < 0 ? q_transpose_auto(a) : a->um.q_transpose;
+    s->q_transpose = a->um.q_transpose; /* -1: auto, sol_q_transpose */
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
     s->p_ref_value = a->so.p_ref_value;
     if (a->bu.on) {
@@ -1836,7 +1832,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
         printf(" (r_e = %g x spacing)", lap_re_factor(&s.lap));
     if (s.p_theta > 0)
         printf(", pressureTheta %g%s", s.p_theta, theta_auto ? " (auto)" : "");
-    if (s.q_transpose)
+    if (sol_q_transpose(&s))
         printf(", interpolationError transpose%s", a.um.q_transpose < 0 ? " (auto)" : "");
     if (a.bu.on)
         printf(", buoyancy %s", a.um.buoyancy_balanced ? "balanced" : "source");

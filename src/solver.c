@@ -344,7 +344,7 @@ void sol_default_settings(sol_settings *s)
     s->positive = 1;
     s->bounded_fits = 1;
     s->anisotropic = 0;
-    s->q_transpose = 0;
+    s->q_transpose = -1;
     s->t_start = 0;
 }
 
@@ -1232,6 +1232,7 @@ ump_status sol_create(const mesh2d *m, const sol_settings *s, const fld_field *U
     sol_state *st = &S->st;
     su->m = m;
     su->set = *s;
+    su->set.q_transpose = sol_q_transpose(s);
     S->nthreads = sol_threads();
     st->want_fields = 1;
     st->uc_all = 1; /* u_P from the U field read */
@@ -1643,9 +1644,18 @@ static long particle_cell_vector(sol *S, const double *vx, const double *vy, dou
  * at a floor it carries). With the buoyancy source (Eq. 4 in the
  * predictor) p holds the hydrostatic gradient up to the walls. With
  * anisotropicCells only such a p takes the walls' samples. */
-static int walls_zero_gradient(const sol_setup *su)
+static int settings_walls_zero_gradient(const sol_settings *s)
 {
-    return su->set.anisotropic && (!su->set.buoyant || su->set.balanced);
+    return s->anisotropic && (!s->buoyant || s->balanced);
+}
+
+static int walls_zero_gradient(const sol_setup *su) { return settings_walls_zero_gradient(&su->set); }
+
+int sol_q_transpose(const sol_settings *s)
+{
+    /* auto: with the walls of the correction, where the transpose was
+     * introduced (docs/METHOD.md section 8, "Walls in the correction" (f)) */
+    return s->q_transpose >= 0 ? s->q_transpose : settings_walls_zero_gradient(s);
 }
 
 /* positiveRows without anisotropicCells: the share of the positive row in a

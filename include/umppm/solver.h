@@ -103,7 +103,9 @@ typedef struct sol_settings {
                                 (docs/METHOD.md section 8, "Walls in the
                                 correction" (f); README "The interpolation
                                 error by the transpose of the fits"); 0: the
-                                whole p by Eq. 10 ([NSH16]; the default) */
+                                whole p by Eq. 10 ([NSH16]); -1 (default):
+                                1 exactly where anisotropic applies its walls
+                                (not with buoyancy source), 0 elsewhere */
     int bounded_fits;        /* boundedFits: an MLS value fit or a carried refill
                                 is kept within the range of its samples widened
                                 by SOL_FIT_MARGIN of it (default 1; docs/METHOD.md
@@ -118,6 +120,8 @@ typedef struct sol_settings {
 } sol_settings;
 
 void sol_default_settings(sol_settings *s);
+/* q_transpose as a solver built with s has it (-1 resolved). */
+int sol_q_transpose(const sol_settings *s);
 
 /* Stages of a step, timed separately (sol_stats.stage_cpu/stage_wall). */
 enum {
