@@ -382,21 +382,36 @@ static ump_status copy_out(const vor_work *w, size_t m, vor_hole **holes, size_t
     return UMP_OK;
 }
 
-ump_status vor_holes(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
-                     vor_hole **holes, size_t *nholes, ump_err *err)
+/* The one-shot forms: a workspace of their own, the result copied out.
+ * whole: vor_holes (every hole, the whole cloud triangulated), else
+ * vor_holes_inside with the margin inside. */
+static ump_status one_shot(int whole, const double *x, const double *y, size_t n, const unsigned char *mask,
+                           double rmin, double inside, vor_hole **holes, size_t *nholes, ump_err *err)
 {
     *holes = NULL;
     *nholes = 0;
     vor_work *w;
     UMP_CALL(vor_work_create(&w, err));
     size_t m = 0;
-    ump_status st = all_holes(w, x, y, n, mask, rmin, &m, err);
-    if (st == UMP_OK) {
-        sort_holes(w->h, m);
-        st = copy_out(w, m, holes, nholes, err);
+    ump_status st;
+    if (whole) {
+        st = all_holes(w, x, y, n, mask, rmin, &m, err);
+        if (st == UMP_OK)
+            sort_holes(w->h, m);
+    } else {
+        const vor_hole *h;
+        st = vor_work_holes_inside(w, x, y, n, mask, rmin, inside, &h, &m, err);
     }
+    if (st == UMP_OK)
+        st = copy_out(w, m, holes, nholes, err);
     vor_work_free(&w);
     return st;
+}
+
+ump_status vor_holes(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
+                     vor_hole **holes, size_t *nholes, ump_err *err)
+{
+    return one_shot(1, x, y, n, mask, rmin, 0.0, holes, nholes, err);
 }
 
 /* ---- vor_holes_inside: the Delaunay triangulation of the candidates only ---- */
@@ -608,15 +623,5 @@ ump_status vor_work_holes_inside(vor_work *w, const double *x, const double *y, 
 ump_status vor_holes_inside(const double *x, const double *y, size_t n, const unsigned char *mask, double rmin,
                             double inside, vor_hole **holes, size_t *nholes, ump_err *err)
 {
-    *holes = NULL;
-    *nholes = 0;
-    vor_work *w;
-    UMP_CALL(vor_work_create(&w, err));
-    const vor_hole *h;
-    size_t m = 0;
-    ump_status st = vor_work_holes_inside(w, x, y, n, mask, rmin, inside, &h, &m, err);
-    if (st == UMP_OK)
-        st = copy_out(w, m, holes, nholes, err);
-    vor_work_free(&w);
-    return st;
+    return one_shot(0, x, y, n, mask, rmin, inside, holes, nholes, err);
 }

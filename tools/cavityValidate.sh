@@ -142,11 +142,13 @@ else
     run "$dir/log.gmsh" gmsh -3 -format msh2 -setnumber h "$h" "$dir/cavity.geo" -o "$dir/cavity.msh"
     run "$dir/log.gmshToFoam" gmshToFoam -case "$dir" "$dir/cavity.msh"
     # the patch types the geo file lists as "// foam-patch-type: <patch> <type>"
+    # (geoPatchTypes of tutorials/RunFunctions, in a subshell: its defaults
+    # stay out of this script)
     while read -r pt ty; do
         [ -n "$pt" ] || continue
         run "$dir/log.foamDictionary" foamDictionary "$dir/constant/polyMesh/boundary" \
             -entry "entry0/$pt/type" -set "$ty"
-    done < <(sed -n 's|^[[:space:]]*//[[:space:]]*foam-patch-type:[[:space:]]*||p' "$dir/cavity.geo")
+    done < <(. "$top/tutorials/RunFunctions" && geoPatchTypes "$dir/cavity.geo")
 fi
 run "$dir/log.checkMesh" checkMesh -case "$dir"
 grep -q '^Mesh OK' "$dir/log.checkMesh" || { echo "cavityValidate.sh: checkMesh failed ($dir/log.checkMesh)" >&2; exit 1; }

@@ -140,9 +140,16 @@ foam_set() {
     run_in "$dir" foamDictionary foamDictionary "$file" -entry "$entry" -set "$value"
 }
 
+# geo_patch_types GEO: the "<patch> <type>" pairs GEO lists as comment lines
+# "// foam-patch-type: <patch> <type>", read by the tutorials' own
+# geoPatchTypes (tutorials/RunFunctions, sourced in a subshell: its defaults
+# for UMPPMFOAM and the like stay out of the tests).
+geo_patch_types() {
+    (. "$(dirname "${BASH_SOURCE[0]}")/../../tutorials/RunFunctions" && geoPatchTypes "$1")
+}
+
 # mesh_from_geo CASE GEO [H]: gmsh (GEO in CASE; with H, -setnumber h H) ->
-# msh2 -> gmshToFoam, then the patch types listed in GEO as comment lines
-# "// foam-patch-type: <patch> <type>".
+# msh2 -> gmshToFoam, then the patch types of geo_patch_types GEO.
 mesh_from_geo() {
     local dir=$1 geo=$2 base patch type
     local -a size=()
@@ -158,7 +165,7 @@ mesh_from_geo() {
         fi
         foam_set "$dir" constant/polyMesh/boundary "entry0/$patch/type" "$type" || return 1
     done <<EOF
-$(sed -n 's|^[[:space:]]*//[[:space:]]*foam-patch-type:[[:space:]]*||p' "$geo")
+$(geo_patch_types "$geo")
 EOF
 }
 
