@@ -59,6 +59,18 @@ cavity_copy() {
     rm -rf "$1" && cp -r "$cavity_tutorial" "$1" && find "$1" -name '*.gz' -exec gzip -d {} +
 }
 
+# ghia_writes DIR T0 T1 [RE]: one line "time u_rms v_rms" per time
+# directory of DIR with T0 <= t <= T1 (a step that does not divide the
+# write interval writes at the step after, so the times are listed, not
+# assumed), the RMS errors from Ghia et al. (1982) at Re RE (default 1000)
+# by bin/ghiaCompare; needs bench_prepare's bin
+ghia_writes() {
+    local t
+    for t in $(ls "$1" | grep -E '^[0-9.]+$' | awk -v a="$2" -v b="$3" '$1 >= a - 1e-6 && $1 <= b + 1e-6' | sort -g); do
+        "$bin/ghiaCompare" -Re "${4:-1000}" "$1" "$t" | tail -1 | awk -v t="$t" '{ print t, $3, $5 }'
+    done
+}
+
 # max_speed FILE [FORMAT]: max |U| of the internal field of the
 # volVectorField FILE (printf FORMAT, default %.4g)
 max_speed() {

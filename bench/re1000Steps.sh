@@ -17,18 +17,14 @@
 set -eu -o pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 n=40 steps="0.005 0.008 0.01 0.0125 0.015 0.02" ico="0.01 0.0125 0.02" extra="" work=""
-. "$top/bench/cases.sh" # bench_options, bench_prepare, cavity_case, setEntry, logSeconds
+. "$top/bench/cases.sh" # bench_options, bench_prepare, cavity_case, ghia_writes, setEntry, logSeconds
 bench_options "n n deltaT steps ico ico umppm extra work work" "$@"
 bench_prepare re1000Steps
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
-ghia=$bin/ghiaCompare
 
-# errors DIR: "u_mean v_mean u_max v_max" over the writes t >= 29.9
+# errors DIR: "u_mean v_mean u_max v_max" over the writes t = 30 ... 40
 errors() {
-    local t
-    for t in $(ls "$1" | grep -E '^[0-9.]+$' | awk '$1 >= 29.9' | sort -g); do
-        "$ghia" -Re 1000 "$1" "$t" | tail -1 | awk '{ print $3, $5 }'
-    done | awk '{ u += $1; v += $2; k++; if ($1 > mu) mu = $1; if ($2 > mv) mv = $2 }
+    ghia_writes "$1" 29.9 40.1 | awk '{ u += $2; v += $3; k++; if ($2 > mu) mu = $2; if ($3 > mv) mv = $3 }
         END { if (k >= 6) printf "%.4f %.4f %.4f %.4f", u / k, v / k, mu, mv; else printf "- - - -" }'
 }
 

@@ -271,22 +271,6 @@ static double p_theta_auto(const app *a, int walled)
     return !walled || (a->closed && mostly_triangles(a->m)) ? 0.5 : 0;
 }
 
-/* interpolationError auto: transpose where anisotropicCells is on, where it
- * was introduced (a particle of a large cell beside thin ones took the same
- * kick of -dt grad q step after step, README "Smaller steps on the 8x8
- * graded cavity"); gradient (Eq. 10 with the whole p, the paper's)
- * elsewhere. Measured on triangles (README, "The interpolation error by
- * the transpose of the fits"): the transpose halves the Re 1000 cavity's
- * error on 854 and 1 476 uniform triangles at small steps (1 476 at
- * deltaT 0.004, settled: 0.0326 / 0.0261 from Ghia against 0.0504 /
- * 0.0506; icoFoam 0.0566 / 0.0490), but loses on 3 552 triangles (0.0180 /
- * 0.0103 against 0.0160 / 0.0066 at 0.01), on the graded 3 588 (0.0131 /
- * 0.0162 against 0.0066 / 0.0059 at 0.005) and at the elbow's quarter
- * step (inlet pressures -0.11 / 1.00 against 0.44 / 2.04; converged 0.466
- * / 2.359), and on the 40^2 quads one step of the right wall's jet reached
- * 1.126 x the lid speed: so not by default. The solver resolves auto
- * (sol_q_transpose: with buoyancy source the anisotropic walls are off, and
- * so is this). */
 static ump_status settings(const app *a, sol_settings *s, ump_err *err)
 {
     sol_default_settings(s);
@@ -325,7 +309,7 @@ static ump_status settings(const app *a, sol_settings *s, ump_err *err)
     s->positive = a->um.positive_rows;
     s->bounded_fits = a->um.bounded_fits;
     s->anisotropic = app_anisotropic(a);
-    s->q_transpose = a->um.q_transpose; /* -1: auto, sol_q_transpose */
+    s->q_transpose = a->um.q_transpose; /* -1: auto, resolved by sol_q_transpose (solver.c) */
     s->p_ref_cell = (ump_idx)a->so.p_ref_cell;
     s->p_ref_value = a->so.p_ref_value;
     if (a->bu.on) {

@@ -1651,10 +1651,24 @@ static int settings_walls_zero_gradient(const sol_settings *s)
 
 static int walls_zero_gradient(const sol_setup *su) { return settings_walls_zero_gradient(&su->set); }
 
+/* interpolationError auto: transpose where anisotropicCells is on, where it
+ * was introduced (a particle of a large cell beside thin ones took the same
+ * kick of -dt grad q step after step, README "Smaller steps on the 8x8
+ * graded cavity"); gradient (Eq. 10 with the whole p, the paper's)
+ * elsewhere. Measured on triangles (README, "The interpolation error by
+ * the transpose of the fits"): the transpose halves the Re 1000 cavity's
+ * error on 854 and 1 476 uniform triangles at small steps (1 476 at
+ * deltaT 0.004, settled: 0.0326 / 0.0261 from Ghia against 0.0504 /
+ * 0.0506; icoFoam 0.0566 / 0.0490), but loses on 3 552 triangles (0.0180 /
+ * 0.0103 against 0.0160 / 0.0066 at 0.01), on the graded 3 588 (0.0131 /
+ * 0.0162 against 0.0066 / 0.0059 at 0.005) and at the elbow's quarter
+ * step (inlet pressures -0.11 / 1.00 against 0.44 / 2.04; converged 0.466
+ * / 2.359), and on the 40^2 quads one step of the right wall's jet reached
+ * 1.126 x the lid speed: so not by default. With buoyancy source the
+ * anisotropic walls are off, and so is this (docs/METHOD.md section 8,
+ * "Walls in the correction" (f)). */
 int sol_q_transpose(const sol_settings *s)
 {
-    /* auto: with the walls of the correction, where the transpose was
-     * introduced (docs/METHOD.md section 8, "Walls in the correction" (f)) */
     return s->q_transpose >= 0 ? s->q_transpose : settings_walls_zero_gradient(s);
 }
 
