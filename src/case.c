@@ -474,6 +474,7 @@ static const int refill_weight_values[] = {1, 0};
 #define UM_GE(x) {1, 0, 0, 0, (x), 0, 0, 0}
 #define UM_1TO16 {1, 1, 0, 0, 1, 16, 0, 0}
 #define UM_AUTO_OR_0TOHALF {1, 1, 0, 0, 0, 0.5, 0, 1}
+#define UM_AUTO_OR_ZERO_OR_1TO4 {1, 1, 0, 0, 1, 4, 1, 1}
 
 static const case_option umppm_options[] = {
     {"variant", CASE_OPT_CHOICE, "auto", -1, variant_words, variant_values, UM_NORANGE,
@@ -514,6 +515,9 @@ static const case_option umppm_options[] = {
     {"mlsSupport", CASE_OPT_SCALAR, "2", 2, NULL, NULL, UM_ZERO_OR_1TO4,
      "MLS weight support in cell extents; 0: Eq. 35's scales (farthest sample)",
      UM_FIELD(mls_support)},
+    {"faceSupport", CASE_OPT_SCALAR, "auto", -1, NULL, NULL, UM_AUTO_OR_ZERO_OR_1TO4,
+     "support of the face fits of u*; auto: 3 beside triangles, else mlsSupport",
+     UM_FIELD(face_support)},
     {"pressureTheta", CASE_OPT_SCALAR, "auto", -1, NULL, NULL, UM_AUTO_OR_0TOHALF,
      "old grad p share at r^n; auto: 0.5 if no boundaries or closed triangles",
      UM_FIELD(p_theta)},

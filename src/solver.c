@@ -340,6 +340,8 @@ void sol_default_settings(sol_settings *s)
     s->refill_k = 4;
     s->refill_increment = 1;
     s->mls_support = 2;
+    s->face_support = 2;
+    s->face_support_tri = 2;
     s->p_theta = 0;
     s->positive = 1;
     s->bounded_fits = 1;
@@ -2500,6 +2502,32 @@ static void face_extents(const mesh2d *m, ump_idx c, ump_idx fa, double *mdx, do
     }
 }
 
+/* The scales of Step 8's MLS fit at face fa of its owner c, for mls_weights
+ * (negative: a fixed support, as mls_extent): the face's cell extents
+ * (face_extents) times faceSupport, SOL_FACE_SUPPORT_TRI at a face beside a
+ * triangle by default (docs/METHOD.md section 8, "Face fits on
+ * triangles"). On coarse triangles the 2 extents of mlsSupport left the
+ * Re 1000 cavity's floor and right wall layers too slow (944 cells: u at
+ * y = 0.055 -0.025 against Ghia's -0.181, icoFoam -0.085) and its corner
+ * eddies too large; 3 extents for these fits alone gave -0.073 (README,
+ * "Face fits on triangles"); on the 40^2 quadrilaterals 3 took v from
+ * 0.0110 to 0.0374 from Ghia. The interpolation error's transpose
+ * (transpose_q) uses the same scales, as it must. */
+static void face_fit_scales(const sol_setup *su, ump_idx c, ump_idx fa, double *ex, double *ey)
+{
+    const mesh2d *m = su->m;
+    double mdx, mdy;
+    face_extents(m, c, fa, &mdx, &mdy);
+    int tri = m->cell_off[c + 1] - m->cell_off[c] == 3;
+    if (fa < m->ninternal) {
+        ump_idx nb = m->neigh[fa];
+        tri |= m->cell_off[nb + 1] - m->cell_off[nb] == 3;
+    }
+    double s = tri ? su->set.face_support_tri : su->set.face_support;
+    *ex = s > 0 ? -s * mdx : mdx;
+    *ey = s > 0 ? -s * mdy : mdy;
+}
+
 /* u*_P of Eq. 36 at cell c's centroid (Eq. 32) from the gathered samples
  * and their gather_values (Step 8, and refill_up, which must give the same
  * bits). anisotropicCells: within its samples' range itself, not widened
@@ -2563,10 +2591,10 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, const double
                 ump_idx fa = su->of_face[a];
                 if (fa >= ni && velocity_prescribed(su, fa))
                     continue;
-                double mdx, mdy;
-                face_extents(m, c, fa, &mdx, &mdy);
-                mls_fit_values(w, cnt, m->fx[fa], m->fy[fa], mls_extent(su, mdx), mls_extent(su, mdy),
-                               fa >= ni ? fa - ni : -1, 2, w->fit_margin, uv);
+                double ex, ey;
+                face_fit_scales(su, c, fa, &ex, &ey);
+                mls_fit_values(w, cnt, m->fx[fa], m->fy[fa], ex, ey, fa >= ni ? fa - ni : -1, 2, w->fit_margin,
+                               uv);
                 flux[fa] = (uv[0] * m->nx[fa] + uv[1] * m->ny[fa]) * m->len[fa]; /* u_f . A_f, Eq. 20 */
             }
         }
@@ -2939,10 +2967,10 @@ static ump_status transpose_q(sol *S, double dt, ump_err *err)
                 ump_idx fa = su->of_face[a];
                 if (fa >= ni && velocity_prescribed(su, fa))
                     continue;
-                double mdx, mdy;
-                face_extents(m, c, fa, &mdx, &mdy);
+                double ex, ey;
+                face_fit_scales(su, c, fa, &ex, &ey);
                 int nn = offsets(w, cnt, m->fx[fa], m->fy[fa], fa >= ni ? fa - ni : -1);
-                mls_weights(w->h, w->k, nn, mls_extent(su, mdx), mls_extent(su, mdy), w->c0, NULL, NULL, NULL);
+                mls_weights(w->h, w->k, nn, ex, ey, w->c0, NULL, NULL, NULL);
                 for (int j = 0; j < nn; j++)
                     if (w->sref[j] >= 0) /* fluid particles only */
                         st->tq[pos++] = (struct tq_entry){w->sref[j], fa, w->c0[j]};

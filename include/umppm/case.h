@@ -100,6 +100,7 @@ typedef struct case_umppm {
     long refill_k;               /* refillParticles: default 4, 1..16 */
     int refill_increment;        /* refillWeights: 1 increment (default), 0 distance */
     double mls_support;          /* mlsSupport: 2 (default) or 1..4 cell extents; 0: Eq. 35's scales */
+    double face_support;         /* faceSupport: -1 auto (default), 0 or 1..4 cell extents */
     double p_theta;              /* pressureTheta: 0 .. 0.5; -1: auto (default) */
     int anisotropic;             /* anisotropicCells: -1 auto (default), 0 or 1 */
     int q_transpose;             /* interpolationError: 1 transpose, 0 gradient,

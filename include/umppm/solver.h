@@ -48,6 +48,11 @@
  * refill_carried). */
 typedef enum { SOL_REFILL_CENTROID = 0, SOL_REFILL_CARRIED = 1 } sol_refill;
 
+/* faceSupport auto: the support of Step 8's face fits, in cell extents, at
+ * a face beside a triangle in a flow driven by its walls alone
+ * (docs/METHOD.md section 8, "Face fits on triangles") */
+#define SOL_FACE_SUPPORT_TRI 3.0
+
 typedef struct sol_settings {
     double nu;               /* kinematic viscosity */
     part_variant variant;    /* UMPPM (adaptive) or UMPPM* (default) */
@@ -79,6 +84,14 @@ typedef struct sol_settings {
                                 cell extents, continuous in the particle positions
                                 (default 2; docs/METHOD.md section 8); 0: Eq. 35's
                                 scales (farthest sample + cell extent) */
+    double face_support;     /* support of Step 8's fits of u* at the faces in cell
+                                extents (> 0; 0: Eq. 35's scales), at a face with
+                                no triangle on either side (default 2) */
+    double face_support_tri; /* the same at a face beside a triangle (default 2;
+                                umppmFoam's faceSupport auto: SOL_FACE_SUPPORT_TRI
+                                in a flow driven by its walls alone,
+                                docs/METHOD.md section 8, "Face fits on
+                                triangles") */
     double p_theta;          /* pressureTheta, 0..1/2: the share of the previous
                                 step's pressure gradient applied at r^n, the rest
                                 at r* (default 0: all at r*, [NSH16] Eq. 10; 1/2:

@@ -151,8 +151,10 @@ fi
 # on the same mesh and step (the issue's "triangles at Re 1000: no worse
 # than icoFoam on the same mesh"). pressureTheta auto is 0.5 here (a flow
 # driven by its walls alone on triangles), and the log must say so.
-# Measured (gcc -O2, one thread): 0.0610 / 0.0514 against icoFoam's
-# 0.0652 / 0.0550 (at t = 40 0.0493 / 0.0477 against 0.0602 / 0.0513).
+# faceSupport auto is 3 at the triangles' faces, and the log must say so.
+# Measured (gcc -O2, one thread): 0.0279 / 0.0244 against icoFoam's
+# 0.0652 / 0.0550 (at t = 40 0.0240 / 0.0229 against 0.0602 / 0.0513);
+# with faceSupport 2, the default before 2026-12-08, 0.0610 / 0.0514.
 # With pressureTheta 0, the default before 2026-12-07 (README, "Triangles
 # at icoFoam's step"): 0.0592 / 0.0619, v 1.13 x icoFoam's, and the check
 # fails.
@@ -174,20 +176,47 @@ mean_errors() {
     for t in $(ls "$1" | grep -E '^[0-9.]+$' | awk '$1 >= 30' | sort -g); do ghia "$1" "$t"; done |
         awk '{ u += $1; v += $2; k++ } END { if (k != 6) print "nan nan"; else printf "%.5f %.5f\n", u / k, v / k }'
 }
-# no_worse CASE LABEL: umppmFoam's mean errors (mean_errors) in CASE at
-# most icoFoam's in CASE/ico, u and v
+# no_worse CASE LABEL [BOUND]: umppmFoam's mean errors (mean_errors) in
+# CASE at most BOUND (1) x icoFoam's in CASE/ico, u and v
 no_worse() {
-    local u v iu iv
+    local u v iu iv b=${3:-1}
     read -r u v <<< "$(mean_errors "$1")"
     read -r iu iv <<< "$(mean_errors "$1/ico")"
     echo "Re 1000, $2: RMS vs Ghia, mean over t = 30..40 (6 writes):" \
         "umppmFoam u $u, v $v; icoFoam $iu / $iv; t = 40: umppmFoam $(ghia "$1" 40), icoFoam $(ghia "$1/ico" 40)"
-    check_below "$2: u RMS / icoFoam's (mean over t = 30..40)" "$(awk -v a="$u" -v b="$iu" 'BEGIN { print a / b }')" 1
-    check_below "$2: v RMS / icoFoam's (mean over t = 30..40)" "$(awk -v a="$v" -v b="$iv" 'BEGIN { print a / b }')" 1
+    check_below "$2: u RMS / icoFoam's (mean over t = 30..40)" "$(awk -v a="$u" -v b="$iu" 'BEGIN { print a / b }')" "$b"
+    check_below "$2: v RMS / icoFoam's (mean over t = 30..40)" "$(awk -v a="$v" -v b="$iv" 'BEGIN { print a / b }')" "$b"
 }
+if grep -q '^A flow driven by its walls alone on a mesh with triangles: faceSupport auto (3 cell extents at the faces beside a triangle, 2 elsewhere' "$tc/log.umppmFoam"; then
+    echo "  ok   faceSupport auto is 3 at the triangles' faces, and the log says so"
+else
+    echo "  FAIL the log does not say faceSupport auto (3 ...): $(grep -m1 'faceSupport' "$tc/log.umppmFoam")"
+    fail=1
+fi
 if ! short_runs; then
     check_range "triangle cells" "$ncells" 1400 1550
     no_worse "$tc" "$ncells triangles, deltaT 0.0125"
+fi
+
+# A coarser triangle mesh the defaults were not tuned on (size 0.05: 944
+# cells, about 20 across), at icoFoam's step 0.0125, t = 40. With the face
+# fits of u* at 2 cell extents (faceSupport 2, the default before
+# 2026-12-08; README, "Face fits on triangles") the floor's and the right
+# wall's layers were far too slow and the corner eddies too large: 0.1147 /
+# 0.0925 from Ghia against icoFoam's 0.0706 / 0.0605 (1.62 / 1.53 x), and
+# this check fails. Measured with faceSupport auto (3 at the triangles'
+# faces; gcc -O2, one thread): 0.0728 / 0.0664 (1.03 / 1.10 x). The bound
+# here is 1.2 x icoFoam's, not the issue's "no worse" (1 x), which this
+# mesh still misses in v.
+cc=$work/coarseTriangles
+re1000_case "$cc" 0.0125 160
+cp "$top/tools/cavityTriangles.geo" "$cc/cavity.geo"
+mesh_from_geo "$cc" "$cc/cavity.geo" 0.05
+ncc=$(sed -n 's/.*nCells: *\([0-9]*\).*/\1/p' "$cc/constant/polyMesh/owner" | head -n 1)
+if ! short_runs; then
+    run_both "$cc" " on coarse triangles"
+    check_range "coarse triangle cells" "$ncc" 900 990
+    no_worse "$cc" "$ncc triangles, deltaT 0.0125" 1.2
 fi
 
 # The same cavity on 30 x 45 cells (1.5:1, blockMesh), deltaT 0.005 (the
