@@ -579,6 +579,7 @@ static void assert_umppm_equal(const case_umppm *a, const case_umppm *b)
     assert_int_equal(a->bounded_fits, b->bounded_fits);
     assert_int_equal(a->refill_increment, b->refill_increment);
     assert_int_equal(a->q_transpose, b->q_transpose);
+    TU_CLOSE(a->face_support, b->face_support, 0);
 }
 
 /* The table itself: keys unique, field sizes match the types, defaults are
@@ -588,7 +589,7 @@ static void test_umppm_table(void **state)
     (void)state;
     size_t n;
     const case_option *t = case_umppm_options(&n);
-    assert_int_equal(n, 22);
+    assert_int_equal(n, 23);
     for (size_t i = 0; i < n; i++) {
         const case_option *o = &t[i];
         assert_non_null(o->key);
@@ -667,6 +668,7 @@ static void test_umppm_defaults(void **state)
     TU_CLOSE(def.alpha, 0.09, 0);
     assert_string_equal(def.laplacian, "auto"); /* CPM4 without walls, else CPM (app.c) */
     TU_CLOSE(def.p_theta, -1, 0);               /* auto: 0.5 without walls, else 0 */
+    TU_CLOSE(def.face_support, -1, 0);          /* auto: 3 beside triangles if closed (app.c) */
     TU_CLOSE(def.re_factor, 0, 0);
     assert_int_equal(def.write_quality, 0);
     assert_string_equal(def.ppe_solver, "auto");
@@ -781,6 +783,14 @@ static void test_umppm_values(void **state)
             fail_msg("pressureTheta %s: %s", th[i].w, err.msg);
         TU_CLOSE(u.p_theta, th[i].v, 0);
     }
+    /* faceSupport: auto (stored as -1), 0 or a number in [1, 4] */
+    struct { const char *w; double v; } fs[] = {{"auto", -1}, {"0", 0}, {"1", 1}, {"3", 3}, {"4", 4}};
+    for (size_t i = 0; i < sizeof fs / sizeof fs[0]; i++) {
+        write_one(d, "faceSupport", fs[i].w);
+        if (case_read_umppm(d, &u, &err) != UMP_OK)
+            fail_msg("faceSupport %s: %s", fs[i].w, err.msg);
+        TU_CLOSE(u.face_support, fs[i].v, 0);
+    }
     /* anisotropicCells: auto or any OpenFOAM Switch word */
     struct { const char *w; int v; } an[] = {{"auto", -1}, {"yes", 1}, {"off", 0}, {"y", 1}, {"n", 0},
                                              {"t", 1}, {"f", 0}, {"none", 0}, {"true", 1}};
@@ -827,6 +837,8 @@ static void test_umppm_bad_values(void **state)
         {"pressureTheta", "0.6", "system/fvSolution:4: UMPPM pressureTheta 0.6 is out of range: allowed auto or [0, 0.5]"},
         {"pressureTheta", "half", "system/fvSolution:4: UMPPM pressureTheta: expected a number, found word 'half'; "
                                   "allowed auto or [0, 0.5]"},
+        {"faceSupport", "0.5", "system/fvSolution:4: UMPPM faceSupport 0.5 is out of range: allowed auto or 0 or [1, 4]"},
+        {"faceSupport", "5", "system/fvSolution:4: UMPPM faceSupport 5 is out of range: allowed auto or 0 or [1, 4]"},
         {"ppeSolver", "MUMPS", "system/fvSolution:4: UMPPM ppeSolver 'MUMPS' is not one of: auto UMFPACK KLU CHOLMOD"},
         {"predictorSolver.preconditioner", "ILU1",
          "system/fvSolution:6: UMPPM predictorSolver.preconditioner 'ILU1' is not one of: ILU0 Jacobi none"},
