@@ -198,22 +198,16 @@ static const char *closed_remedy(const app *a)
                : "refine the mesh, or try UMPPM { variant UMPPM; anisotropicCells yes; }";
 }
 
-/* Any cell a triangle */
-static int app_triangles(const mesh2d *m)
-{
-    for (ump_idx c = 0; c < m->ncells; c++)
-        if (m->cell_off[c + 1] - m->cell_off[c] == 3)
-            return 1;
-    return 0;
-}
-
-/* Most cells triangles (more than half; the count of -checkMesh) */
-static int mostly_triangles(const mesh2d *m)
+/* How many cells are triangles (the count of -checkMesh) */
+static size_t triangles(const mesh2d *m)
 {
     mesh_stats st;
     mesh_compute_stats(m, &st);
-    return 2 * (size_t)st.ntri > (size_t)m->ncells;
+    return (size_t)st.ntri;
 }
+
+/* Most cells triangles (more than half) */
+static int mostly_triangles(const mesh2d *m) { return 2 * triangles(m) > (size_t)m->ncells; }
 
 /* A quadrilateral is square for variant auto up to this ratio of the
  * summed lengths of its two pairs of opposite edges (rotation does not
@@ -1860,7 +1854,7 @@ ump_status app_run(const char *case_dir, const app_options *opt, ump_err *err)
                "laplacian CPM and pressureTheta 0 are the paper's method\n",
                lap_auto ? "laplacian auto (CPM4)" : "", lap_auto && theta_auto ? " and " : "",
                theta_auto ? "pressureTheta auto (0.5)" : "", lap_auto && theta_auto ? "take" : "takes");
-    if (a.um.face_support < 0 && s.face_support_tri != s.face_support && app_triangles(a.m))
+    if (a.um.face_support < 0 && s.face_support_tri != s.face_support && triangles(a.m) > 0)
         printf("A flow driven by its walls alone on a mesh with triangles: faceSupport auto (%g cell extents "
                "at the faces beside a triangle, %g elsewhere: the fits of u* at the faces; README, \"Face fits "
                "on triangles\"); faceSupport %g is mlsSupport's\n",

@@ -168,6 +168,8 @@ typedef struct sol_setup {
     ump_idx wf_max;            /* most such faces of one stencil's cells */
     /* faces whose u* is interpolated (not fixed, not symmetry), by owner */
     ump_idx *of_off, *of_face;
+    double *fsx, *fsy;         /* [nfaces] the scales of Step 8's face fits
+                                  (face_scales_build, once) */
     /* [ncells] the owners of boundary faces: Step 8 fits their u*_P at
      * every step (the boundary particles and a patch's face values read
      * their u_P), not only at the steps that compute the fields written */
@@ -441,7 +443,7 @@ void sol_free(sol **pS)
     free(su->timed);
     void *arr[] = {su->u_kind, st->ub, st->vb, su->p_dir, su->p_total, su->p0, st->prgh_f, su->t_kind, su->tb, su->ghc, su->ghf, su->rinv, st->rbx, st->rby,
                    su->st_off, su->st_cell, su->st_sx, su->st_sy, su->ru_off, su->ru_q0, su->ru_q1,
-                   su->ru_sx, su->ru_sy, su->st_bnd, su->of_off, su->of_face, st->p, st->pold, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
+                   su->ru_sx, su->ru_sy, su->st_bnd, su->of_off, su->of_face, su->fsx, su->fsy, st->p, st->pold, st->uc, st->vc, st->usc, st->vsc, st->flux, st->gflux, st->gx,
                    st->gy, st->div, st->pf, st->Tc, st->gtx, st->gty, st->x0, st->y0, st->us,
                    st->vs, st->rhs_u, st->rhs_v, st->Ts, st->rhs_T, st->cell0, st->keep, st->rp, st->ci,
                    st->av, st->avT, st->uneu, st->tneu, st->cnt_cell, st->pib, st->hxx, st->hxy, st->hyy, st->fluxb, st->pf0, st->gpx, st->gpy, st->wdamp, st->empty,
@@ -1097,6 +1099,42 @@ static ump_status owned_faces_build(sol_setup *su, ump_err *err)
     return UMP_OK;
 }
 
+/* The scales of Step 8's MLS fit at every face, for mls_weights (negative:
+ * a fixed support, as mls_extent), once: the mean extents of the face's
+ * two cells (the owner's at a boundary face; [NSH16] below Eq. 35) times
+ * faceSupport, SOL_FACE_SUPPORT_TRI at a face beside a triangle by default
+ * (docs/METHOD.md section 8, "Face fits on triangles"). On coarse
+ * triangles the 2 extents of mlsSupport left the Re 1000 cavity's floor
+ * and right wall layers too slow (944 cells: u at y = 0.055 -0.025 against
+ * Ghia's -0.181, icoFoam -0.085) and its corner eddies too large; 3
+ * extents for these fits alone gave -0.073 (README, "Face fits on
+ * triangles"); on the 40^2 quadrilaterals 3 took v from 0.0110 to 0.0374
+ * from Ghia. The interpolation error's transpose (transpose_q) uses the
+ * same scales, as it must. */
+static ump_status face_scales_build(sol_setup *su, ump_err *err)
+{
+    const mesh2d *m = su->m;
+    ump_idx nf = m->nfaces;
+    if (!(su->fsx = ump_alloc_array((size_t)nf + 1, sizeof *su->fsx)) ||
+        !(su->fsy = ump_alloc_array((size_t)nf + 1, sizeof *su->fsy)))
+        return UMP_FAIL(err, UMP_ERR_NOMEM, "solver: out of memory for the face fits' scales");
+    for (ump_idx f = 0; f < nf; f++) {
+        ump_idx c = m->owner[f];
+        double mdx = m->dx[c], mdy = m->dy[c];
+        int tri = m->cell_off[c + 1] - m->cell_off[c] == 3;
+        if (f < m->ninternal) {
+            ump_idx nb = m->neigh[f];
+            mdx = 0.5 * (mdx + m->dx[nb]);
+            mdy = 0.5 * (mdy + m->dy[nb]);
+            tri |= m->cell_off[nb + 1] - m->cell_off[nb] == 3;
+        }
+        double sf = tri ? su->set.face_support_tri : su->set.face_support;
+        su->fsx[f] = sf > 0 ? -sf * mdx : mdx;
+        su->fsy[f] = sf > 0 ? -sf * mdy : mdy;
+    }
+    return UMP_OK;
+}
+
 /* ---- per-particle arrays ------------------------------------------------- */
 
 static ump_status grow_particle_work(sol_state *st, size_t n, ump_err *err)
@@ -1138,6 +1176,7 @@ static ump_status particles_build(sol_setup *su, sol_state *st, ump_err *err)
     const mesh2d *m = su->m;
     UMP_CALL(stencil_build(su, err));
     UMP_CALL(owned_faces_build(su, err));
+    UMP_CALL(face_scales_build(su, err));
     UMP_CALL(part_boundary_create(&st->bp, m, err));
     su->st_bnd = ump_alloc_array((size_t)m->ncells, sizeof *su->st_bnd);
     UMP_CHECK(su->st_bnd, err, UMP_ERR_NOMEM, "particle stencils: out of memory (%ld cells)", (long)m->ncells);
@@ -2490,44 +2529,6 @@ static inline int velocity_prescribed(const sol_setup *su, ump_idx f)
     return k == BU_FIXED || k == BU_SYMMETRY;
 }
 
-/* The extents of face fa's fit from cell c (Step 8): the cell's, averaged
- * with the neighbour's across an interior face. */
-static void face_extents(const mesh2d *m, ump_idx c, ump_idx fa, double *mdx, double *mdy)
-{
-    *mdx = m->dx[c];
-    *mdy = m->dy[c];
-    if (fa < m->ninternal) {
-        *mdx = 0.5 * (*mdx + m->dx[m->neigh[fa]]);
-        *mdy = 0.5 * (*mdy + m->dy[m->neigh[fa]]);
-    }
-}
-
-/* The scales of Step 8's MLS fit at face fa of its owner c, for mls_weights
- * (negative: a fixed support, as mls_extent): the face's cell extents
- * (face_extents) times faceSupport, SOL_FACE_SUPPORT_TRI at a face beside a
- * triangle by default (docs/METHOD.md section 8, "Face fits on
- * triangles"). On coarse triangles the 2 extents of mlsSupport left the
- * Re 1000 cavity's floor and right wall layers too slow (944 cells: u at
- * y = 0.055 -0.025 against Ghia's -0.181, icoFoam -0.085) and its corner
- * eddies too large; 3 extents for these fits alone gave -0.073 (README,
- * "Face fits on triangles"); on the 40^2 quadrilaterals 3 took v from
- * 0.0110 to 0.0374 from Ghia. The interpolation error's transpose
- * (transpose_q) uses the same scales, as it must. */
-static void face_fit_scales(const sol_setup *su, ump_idx c, ump_idx fa, double *ex, double *ey)
-{
-    const mesh2d *m = su->m;
-    double mdx, mdy;
-    face_extents(m, c, fa, &mdx, &mdy);
-    int tri = m->cell_off[c + 1] - m->cell_off[c] == 3;
-    if (fa < m->ninternal) {
-        ump_idx nb = m->neigh[fa];
-        tri |= m->cell_off[nb + 1] - m->cell_off[nb] == 3;
-    }
-    double s = tri ? su->set.face_support_tri : su->set.face_support;
-    *ex = s > 0 ? -s * mdx : mdx;
-    *ey = s > 0 ? -s * mdy : mdy;
-}
-
 /* u*_P of Eq. 36 at cell c's centroid (Eq. 32) from the gathered samples
  * and their gather_values (Step 8, and refill_up, which must give the same
  * bits). anisotropicCells: within its samples' range itself, not widened
@@ -2591,10 +2592,8 @@ static void mls_to_mesh(sol *S, const double *fu, const double *fv, const double
                 ump_idx fa = su->of_face[a];
                 if (fa >= ni && velocity_prescribed(su, fa))
                     continue;
-                double ex, ey;
-                face_fit_scales(su, c, fa, &ex, &ey);
-                mls_fit_values(w, cnt, m->fx[fa], m->fy[fa], ex, ey, fa >= ni ? fa - ni : -1, 2, w->fit_margin,
-                               uv);
+                mls_fit_values(w, cnt, m->fx[fa], m->fy[fa], su->fsx[fa], su->fsy[fa], fa >= ni ? fa - ni : -1, 2,
+                               w->fit_margin, uv);
                 flux[fa] = (uv[0] * m->nx[fa] + uv[1] * m->ny[fa]) * m->len[fa]; /* u_f . A_f, Eq. 20 */
             }
         }
@@ -2967,10 +2966,8 @@ static ump_status transpose_q(sol *S, double dt, ump_err *err)
                 ump_idx fa = su->of_face[a];
                 if (fa >= ni && velocity_prescribed(su, fa))
                     continue;
-                double ex, ey;
-                face_fit_scales(su, c, fa, &ex, &ey);
                 int nn = offsets(w, cnt, m->fx[fa], m->fy[fa], fa >= ni ? fa - ni : -1);
-                mls_weights(w->h, w->k, nn, ex, ey, w->c0, NULL, NULL, NULL);
+                mls_weights(w->h, w->k, nn, su->fsx[fa], su->fsy[fa], w->c0, NULL, NULL, NULL);
                 for (int j = 0; j < nn; j++)
                     if (w->sref[j] >= 0) /* fluid particles only */
                         st->tq[pos++] = (struct tq_entry){w->sref[j], fa, w->c0[j]};
